@@ -1,0 +1,17 @@
+# isegman_layer(<name> LIBS <deps...>): one library per layer from every *.cc in the
+# folder, and one gtest binary from every *_test.cc beside them (COLMAP style).
+function(isegman_layer name)
+  cmake_parse_arguments(L "" "" "LIBS;TEST_LIBS" ${ARGN})
+  file(GLOB all_sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
+  file(GLOB test_sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cc)
+  set(lib_sources ${all_sources})
+  if(test_sources)
+    list(REMOVE_ITEM lib_sources ${test_sources})
+  endif()
+  add_library(isegman_${name} ${lib_sources})
+  target_include_directories(isegman_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
+  target_link_libraries(isegman_${name} PUBLIC ${L_LIBS})
+  if(test_sources)
+    isegman_add_tests(${name}_tests ${test_sources} LIBS isegman_${name} ${L_TEST_LIBS})
+  endif()
+endfunction()
