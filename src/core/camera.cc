@@ -30,7 +30,8 @@ Camera Camera::from_center_rotation(const Vec3& center, const Mat3& cam_to_world
 Camera Camera::look_at(const Vec3& eye, const Vec3& target, const Vec3& up, int width,
                        int height, double fov_x_deg) {
   Vec3 z = normalized(target - eye);
-  Vec3 x = normalized(cross(z, -up));  // image x to the right when y points down
+  // Right-handed camera frame with y pointing down the image: x = y cross z, y ~ -up.
+  Vec3 x = normalized(cross(z, up));
   Vec3 y = cross(z, x);
   Camera c = from_center_rotation(eye, Mat3::from_cols(x, y, z));
   c.width = width;

@@ -13,7 +13,8 @@ double psnr(const Image& a, const Image& b) {
     throw Error("psnr: images differ in shape");
   double se = 0;
   for (size_t i = 0; i < a.data.size(); ++i) {
-    double d = double(a.data[i]) - double(b.data[i]);
+    // Compared as displayable images: both clamped to [0, 1], as a saved render is.
+    double d = std::clamp(double(a.data[i]), 0.0, 1.0) - std::clamp(double(b.data[i]), 0.0, 1.0);
     se += d * d;
   }
   double mse = se / double(a.data.size());

@@ -17,7 +17,8 @@ struct Image {
   float at(int x, int y, int c = 0) const { return data[(size_t(y) * width + x) * channels + c]; }
 };
 
-// Peak signal-to-noise ratio (dB) of two images of equal shape, values in [0, 1].
+// Peak signal-to-noise ratio (dB) of two images of equal shape, both clamped to [0, 1]
+// first (renders may exceed 1 before they are stored).
 double psnr(const Image& a, const Image& b);
 // Bilinear resize (box-filtered when shrinking by more than 2x).
 Image resize_image(const Image& src, int width, int height);

@@ -120,7 +120,7 @@ inline Quat Quat::from_matrix(const Mat3& r) {
 }
 
 inline Quat Quat::from_axis_angle(const Vec3& axis, double angle_rad) {
-  Vec3 a = normalized(axis);
+  Vec3 a = isegman::normalized(axis);
   double s = std::sin(angle_rad / 2);
   return {std::cos(angle_rad / 2), a.x * s, a.y * s, a.z * s};
 }

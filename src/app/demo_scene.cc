@@ -1,0 +1,179 @@
+#include "app/demo_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdint>
+
+#include "core/sh.h"
+
+namespace isegman {
+namespace {
+
+// Small deterministic generator (SplitMix64) so the demo is identical everywhere.
+struct Rng {
+  uint64_t s;
+  explicit Rng(uint64_t seed) : s(seed) {}
+  uint64_t next() {
+    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  double uniform() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
+  double range(double a, double b) { return a + (b - a) * uniform(); }
+  double normal() {
+    double u = std::max(uniform(), 1e-12), v = uniform();
+    return std::sqrt(-2 * std::log(u)) * std::cos(2 * M_PI * v);
+  }
+};
+
+// Quaternion turning the local z axis onto `n`.
+Quat align_z_to(const Vec3& n) {
+  Vec3 z{0, 0, 1};
+  double c = dot(z, n);
+  if (c < -0.999999) return {0, 1, 0, 0};
+  Vec3 axis = cross(z, n);
+  Quat q{1 + c, axis.x, axis.y, axis.z};
+  return q.normalized();
+}
+
+struct Builder {
+  DemoScene& demo;
+  GaussianScene& g;
+  Rng& rng;
+  int degree;
+
+  // Adds a flat Gaussian at p tangent to the surface with normal n.
+  void splat(const Vec3& p, const Vec3& n, double size, const Vec3& rgb, int label, double shine) {
+    size_t i = g.size();
+    g.positions.insert(g.positions.end(), {float(p.x), float(p.y), float(p.z)});
+    g.normals.insert(g.normals.end(), {float(n.x), float(n.y), float(n.z)});
+    double sx = size * rng.range(0.8, 1.25), sy = size * rng.range(0.8, 1.25);
+    g.scales.insert(g.scales.end(), {float(std::log(sx)), float(std::log(sy)), float(std::log(size * 0.15))});
+    Quat q = align_z_to(n) * Quat::from_axis_angle({0, 0, 1}, rng.range(0, M_PI));
+    // Stored unnormalised on purpose (as trainers do) to exercise normalisation.
+    double scale = rng.range(0.5, 2.0);
+    g.rotations.insert(g.rotations.end(), {float(q.w * scale), float(q.x * scale), float(q.y * scale), float(q.z * scale)});
+    g.opacity.push_back(float(std::log(0.97 / 0.03) + rng.range(-0.5, 0.5)));
+    const int K = sh_coeff_count(degree);
+    for (int k = 0; k < K; ++k)
+      for (int c = 0; c < 3; ++c) {
+        float v;
+        if (k == 0) v = rgb_to_sh_dc(float(std::clamp(rgb[c] + rng.normal() * 0.03, 0.0, 1.0)));
+        else v = float(rng.normal() * shine / k);  // a little view dependence
+        g.sh.push_back(v);
+      }
+    demo.labels.push_back(label);
+    (void)i;
+  }
+};
+
+}  // namespace
+
+DemoScene make_demo_scene(const DemoSceneOptions& opt) {
+  DemoScene demo;
+  GaussianScene& g = demo.bundle.gaussians;
+  g.sh_degree = opt.sh_degree;
+  Rng rng(opt.seed);
+  Builder b{demo, g, rng, opt.sh_degree};
+  const double d = opt.density;
+
+  // Ground: a checkerboard plane of 6 x 6 units.
+  const int ground = int(9000 * d);
+  for (int i = 0; i < ground; ++i) {
+    Vec3 p{rng.range(-3, 3), rng.range(-3, 3), 0};
+    bool check = (int(std::floor(p.x * 1.5)) + int(std::floor(p.y * 1.5))) & 1;
+    Vec3 col = check ? Vec3{0.78, 0.76, 0.70} : Vec3{0.45, 0.44, 0.42};
+    b.splat(p, {0, 0, 1}, 0.06 / std::sqrt(d), col, -1, 0.02);
+  }
+
+  auto add_object = [&](const std::string& name, const Vec3& c, float r) {
+    demo.objects.push_back({name, c, r});
+    return int(demo.objects.size() - 1);
+  };
+  // Red sphere.
+  {
+    Vec3 c{-1.2, -0.8, 0.55};
+    int label = add_object("red_sphere", c, 0.56f);
+    const int n = int(5000 * d);
+    for (int i = 0; i < n; ++i) {
+      Vec3 nrm = normalized(Vec3{rng.normal(), rng.normal(), rng.normal()});
+      double stripe = 0.5 + 0.5 * std::sin(nrm.z * 9);
+      b.splat(c + nrm * 0.55, nrm, 0.045 / std::sqrt(d), {0.85, 0.12 + 0.1 * stripe, 0.10}, label, 0.05);
+    }
+  }
+  // Green box.
+  {
+    Vec3 c{1.1, -0.6, 0.4};
+    int label = add_object("green_box", c, 0.7f);
+    const double h = 0.4;
+    const int n = int(6000 * d);
+    for (int i = 0; i < n; ++i) {
+      int face = int(rng.uniform() * 5);  // no bottom face
+      double u = rng.range(-h, h), v = rng.range(-h, h);
+      Vec3 p, nrm;
+      switch (face) {
+        case 0: p = {h, u, v}; nrm = {1, 0, 0}; break;
+        case 1: p = {-h, u, v}; nrm = {-1, 0, 0}; break;
+        case 2: p = {u, h, v}; nrm = {0, 1, 0}; break;
+        case 3: p = {u, -h, v}; nrm = {0, -1, 0}; break;
+        default: p = {u, v, h}; nrm = {0, 0, 1}; break;
+      }
+      bool dot_mark = std::fmod(std::fabs(u * 5) + std::fabs(v * 5), 1.0) < 0.15;
+      b.splat(c + p, nrm, 0.04 / std::sqrt(d), dot_mark ? Vec3{0.9, 0.9, 0.3} : Vec3{0.12, 0.70, 0.22}, label, 0.03);
+    }
+  }
+  // Blue cylinder.
+  {
+    Vec3 c{0.2, 1.2, 0.0};
+    int label = add_object("blue_cylinder", c + Vec3{0, 0, 0.6}, 0.75f);
+    const double r = 0.35, height = 1.2;
+    const int n = int(5000 * d);
+    for (int i = 0; i < n; ++i) {
+      if (rng.uniform() < 0.18) {  // top cap
+        double rr = r * std::sqrt(rng.uniform()), a = rng.range(0, 2 * M_PI);
+        b.splat(c + Vec3{rr * std::cos(a), rr * std::sin(a), height}, {0, 0, 1}, 0.04 / std::sqrt(d),
+                {0.15, 0.30, 0.85}, label, 0.03);
+      } else {
+        double a = rng.range(0, 2 * M_PI), z = rng.range(0, height);
+        Vec3 nrm{std::cos(a), std::sin(a), 0};
+        double band = std::fmod(z * 4, 1.0) < 0.2 ? 0.25 : 0.0;
+        b.splat(c + Vec3{r * nrm.x, r * nrm.y, z}, nrm, 0.04 / std::sqrt(d), {0.12 + band, 0.28 + band, 0.88},
+                label, 0.03);
+      }
+    }
+  }
+  // Yellow torus lying on the ground.
+  {
+    Vec3 c{-0.3, 0.1, 0.18};
+    int label = add_object("yellow_torus", c, 0.75f);
+    const double R = 0.55, r = 0.18;
+    const int n = int(5000 * d);
+    for (int i = 0; i < n; ++i) {
+      double u = rng.range(0, 2 * M_PI), v = rng.range(0, 2 * M_PI);
+      Vec3 ring{std::cos(u), std::sin(u), 0};
+      Vec3 nrm = ring * std::cos(v) + Vec3{0, 0, std::sin(v)};
+      Vec3 p = c + ring * R + nrm * r;
+      b.splat(p, nrm, 0.035 / std::sqrt(d), {0.95, 0.80, 0.15}, label, 0.04);
+    }
+  }
+
+  // Orbit cameras: two rings looking at the scene centre.
+  const Vec3 target{0, 0.1, 0.35};
+  for (int i = 0; i < opt.cameras; ++i) {
+    const bool upper = i % 2 == 1;
+    const double a = 2 * M_PI * i / opt.cameras;
+    const double radius = upper ? 4.2 : 5.0, height = upper ? 3.2 : 1.6;
+    Vec3 eye{radius * std::cos(a), radius * std::sin(a), height};
+    Camera cam = Camera::look_at(eye, target, {0, 0, 1}, opt.width, opt.height, 55.0);
+    cam.id = i;
+    char name[32];
+    std::snprintf(name, sizeof name, "orbit_%03d", i);
+    cam.name = name;
+    demo.bundle.cameras.push_back(cam);
+  }
+  return demo;
+}
+
+}  // namespace isegman

@@ -1,0 +1,59 @@
+// parallel_for over task indices with a fixed worker count and dynamic scheduling.
+// Results stay deterministic when each task writes only its own outputs.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace isegman {
+
+inline int resolve_threads(int requested) {
+  if (requested > 0) return requested;
+  unsigned hw = std::thread::hardware_concurrency();
+  return hw == 0 ? 1 : int(hw);
+}
+
+// Calls fn(worker, task) for task in [0, tasks) on `threads` workers (0 = all cores).
+inline void parallel_for(size_t tasks, int threads, const std::function<void(int, size_t)>& fn) {
+  const int workers = int(std::min<size_t>(size_t(resolve_threads(threads)), std::max<size_t>(tasks, 1)));
+  if (workers <= 1) {
+    for (size_t t = 0; t < tasks; ++t) fn(0, t);
+    return;
+  }
+  std::atomic<size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto body = [&](int w) {
+    try {
+      for (size_t t; (t = next.fetch_add(1)) < tasks;) fn(w, t);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+      next = tasks;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int w = 1; w < workers; ++w) pool.emplace_back(body, w);
+  body(0);
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
+
+// Splits [0, n) into chunks of `grain` and runs fn(worker, begin, end) on each.
+inline void parallel_chunks(size_t n, size_t grain, int threads,
+                            const std::function<void(int, size_t, size_t)>& fn) {
+  const size_t chunks = (n + grain - 1) / grain;
+  parallel_for(chunks, threads, [&](int w, size_t c) { fn(w, c * grain, std::min(n, (c + 1) * grain)); });
+}
+
+// Number of workers parallel_for will actually use for `tasks` tasks.
+inline int worker_count(size_t tasks, int threads) {
+  return int(std::min<size_t>(size_t(resolve_threads(threads)), std::max<size_t>(tasks, 1)));
+}
+
+}  // namespace isegman
