@@ -1,0 +1,16 @@
+// Image dimensions from a PNG or JPEG header without decoding the pixels (used by the
+// camera loaders to fill in missing image sizes cheaply).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace isegman {
+
+// Returns false (and leaves width/height untouched) when the file cannot be opened or
+// is not a PNG/JPEG with a readable size.
+bool read_image_size(const std::string& path, int& width, int& height);
+// The same on bytes in memory (the file's beginning is enough).
+bool parse_image_size(const uint8_t* data, size_t size, int& width, int& height);
+
+}  // namespace isegman
