@@ -1,0 +1,1038 @@
+// The ONNX executor: one function per operator on ATen tensors, a load-time pass that folds
+// constant subgraphs, and a run loop that frees every intermediate after its last use.
+#include "models/onnx_graph.h"
+
+#include <ATen/ATen.h>
+#include <ATen/Parallel.h>
+#include <c10/core/InferenceMode.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <thread>
+#include <unordered_map>
+
+#include "core/error.h"
+
+namespace isegman::models {
+
+void configure_threads(int threads) {
+  static std::once_flag once;
+  std::call_once(once, [threads] {
+    setenv("OMP_WAIT_POLICY", "PASSIVE", 0);
+    int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    at::set_num_threads(n);
+  });
+}
+
+namespace {
+
+// An operator-level failure; the run loop adds the model file and the node.
+struct OpError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Ctx {
+  const Node& node;
+  int64_t opset;
+  std::vector<at::Tensor> in;   // undefined where an optional input is omitted
+  std::vector<at::Tensor> out;  // one per node output
+
+  bool has(size_t i) const { return i < in.size() && in[i].defined(); }
+  const at::Tensor& input(size_t i) const {
+    if (!has(i)) throw OpError("missing required input " + std::to_string(i));
+    return in[i];
+  }
+};
+
+using OpFn = std::function<void(Ctx&)>;
+
+at::ScalarType to_scalar_type(DType t) {
+  switch (t) {
+    case DType::Float32: return at::kFloat;
+    case DType::Float64: return at::kDouble;
+    case DType::Float16: return at::kHalf;
+    case DType::Int8: return at::kChar;
+    case DType::UInt8: return at::kByte;
+    case DType::Int32: return at::kInt;
+    case DType::Int64: return at::kLong;
+    case DType::Bool: return at::kBool;
+  }
+  return at::kFloat;
+}
+
+DType to_dtype(at::ScalarType t) {
+  switch (t) {
+    case at::kFloat: return DType::Float32;
+    case at::kDouble: return DType::Float64;
+    case at::kHalf: return DType::Float16;
+    case at::kChar: return DType::Int8;
+    case at::kByte: return DType::UInt8;
+    case at::kInt: return DType::Int32;
+    case at::kLong: return DType::Int64;
+    case at::kBool: return DType::Bool;
+    default: break;
+  }
+  throw OpError(std::string("tensor type ") + c10::toString(t) + " has no ONNX equivalent here");
+}
+
+// ONNX TensorProto.DataType code -> ATen type (for Cast's `to`).
+at::ScalarType onnx_code_to_scalar_type(int64_t code) {
+  switch (code) {
+    case 1: return at::kFloat;
+    case 2: return at::kByte;
+    case 3: return at::kChar;
+    case 5: return at::kShort;
+    case 6: return at::kInt;
+    case 7: return at::kLong;
+    case 9: return at::kBool;
+    case 10: return at::kHalf;
+    case 11: return at::kDouble;
+    case 16: return at::kBFloat16;
+    default: break;
+  }
+  throw OpError("unsupported element type code " + std::to_string(code));
+}
+
+at::Tensor to_aten(const HostTensor& h) {
+  auto keep = h.bytes;
+  std::vector<int64_t> shape = h.shape;
+  if (keep->empty()) return at::empty(shape, at::TensorOptions().dtype(to_scalar_type(h.dtype)));
+  return at::from_blob(
+      keep->data(), shape, [keep](void*) mutable { keep.reset(); },
+      at::TensorOptions().dtype(to_scalar_type(h.dtype)));
+}
+
+HostTensor to_host(const at::Tensor& t0) {
+  at::Tensor t = t0.contiguous();
+  HostTensor h(to_dtype(t.scalar_type()), t.sizes().vec());
+  if (h.numel() > 0) std::memcpy(h.bytes->data(), t.data_ptr(), h.bytes->size());
+  return h;
+}
+
+std::vector<int64_t> ints_of(const at::Tensor& t) {
+  at::Tensor c = t.to(at::kLong).contiguous().reshape({-1});
+  const int64_t* p = c.data_ptr<int64_t>();
+  return std::vector<int64_t>(p, p + c.numel());
+}
+
+double scalar_of(const at::Tensor& t) {
+  if (t.numel() != 1) throw OpError("expected a single-element tensor, got " + std::to_string(t.numel()) + " elements");
+  return t.to(at::kDouble).reshape({-1})[0].item<double>();
+}
+
+int64_t norm_axis(int64_t axis, int64_t rank) {
+  int64_t a = axis < 0 ? axis + rank : axis;
+  if (a < 0 || a >= std::max<int64_t>(rank, 1))
+    throw OpError("axis " + std::to_string(axis) + " out of range for rank " + std::to_string(rank));
+  return a;
+}
+
+std::string shape_str(at::IntArrayRef s) {
+  std::ostringstream o;
+  o << "[";
+  for (size_t i = 0; i < s.size(); ++i) o << (i ? "," : "") << s[i];
+  o << "]";
+  return o.str();
+}
+
+std::vector<int64_t> broadcast_shapes(std::vector<int64_t> a, std::vector<int64_t> b) {
+  if (a.size() < b.size()) std::swap(a, b);
+  b.insert(b.begin(), a.size() - b.size(), 1);
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a[i] == b[i] || b[i] == 1) continue;
+    if (a[i] == 1) { a[i] = b[i]; continue; }
+    throw OpError("shapes cannot be broadcast: " + shape_str(a) + " vs " + shape_str(b));
+  }
+  return a;
+}
+
+// ---------------------------------------------------------------- elementwise
+
+void unary(std::map<std::string, OpFn>& r, const std::string& name, at::Tensor (*f)(const at::Tensor&)) {
+  r[name] = [f](Ctx& c) { c.out = {f(c.input(0))}; };
+}
+
+template <class F>
+void binary(std::map<std::string, OpFn>& r, const std::string& name, F f) {
+  r[name] = [f](Ctx& c) { c.out = {f(c.input(0), c.input(1))}; };
+}
+
+at::Tensor onnx_div(const at::Tensor& a, const at::Tensor& b) {
+  if (at::isIntegralType(a.scalar_type(), true) && at::isIntegralType(b.scalar_type(), true))
+    return at::div(a, b, "trunc");
+  return at::div(a, b);
+}
+
+at::Tensor onnx_pow(const at::Tensor& a, const at::Tensor& b) {
+  if (b.numel() == 1 && at::isFloatingType(a.scalar_type())) {
+    double e = scalar_of(b);
+    if (e == 2.0) return a * a;
+    if (e == 0.5) return at::sqrt(a);
+    if (e == 1.0) return a.clone();
+    return at::pow(a, e);
+  }
+  return at::pow(a, b).to(a.scalar_type());
+}
+
+// ---------------------------------------------------------------- reductions
+
+std::vector<int64_t> reduce_axes(const Ctx& c, bool& reduce_all) {
+  std::vector<int64_t> axes;
+  if (c.node.has("axes")) axes = c.node.get_ints("axes", {});
+  else if (c.has(1)) axes = ints_of(c.input(1));
+  reduce_all = axes.empty();
+  if (reduce_all && c.node.get_int("noop_with_empty_axes", 0)) reduce_all = false;
+  int64_t rank = c.input(0).dim();
+  for (auto& a : axes) a = norm_axis(a, rank);
+  return axes;
+}
+
+template <class F>
+OpFn reduce_op(F f) {
+  return [f](Ctx& c) {
+    bool all = false;
+    std::vector<int64_t> axes = reduce_axes(c, all);
+    const at::Tensor& x = c.input(0);
+    bool keep = c.node.get_int("keepdims", 1) != 0;
+    if (all) {
+      axes.resize(x.dim());
+      for (int64_t i = 0; i < x.dim(); ++i) axes[i] = i;
+    }
+    if (axes.empty()) { c.out = {x}; return; }
+    c.out = {f(x, axes, keep)};
+  };
+}
+
+// ---------------------------------------------------------------- resize
+
+// Source coordinate of output index `o` along an axis, per ONNX's coordinate_transformation_mode.
+double resize_source(const std::string& mode, double o, double scale, int64_t in, int64_t out) {
+  if (mode == "half_pixel") return (o + 0.5) / scale - 0.5;
+  if (mode == "pytorch_half_pixel") return out > 1 ? (o + 0.5) / scale - 0.5 : 0.0;
+  if (mode == "align_corners") return out == 1 ? 0.0 : o * double(in - 1) / double(out - 1);
+  if (mode == "asymmetric") return o / scale;
+  if (mode == "tf_half_pixel_for_nn") return (o + 0.5) / scale;
+  if (mode == "half_pixel_symmetric") {
+    double adj = double(out) / (scale * double(in));
+    double centre = double(in) / 2.0;
+    double offset = centre * (1 - adj);
+    return offset + (o + 0.5) / scale - 0.5;
+  }
+  throw OpError("coordinate_transformation_mode '" + mode + "' is not supported");
+}
+
+void op_resize(Ctx& c) {
+  const at::Tensor& x = c.input(0);
+  std::string mode = c.node.get_string("mode", "nearest");
+  std::string coord = c.node.get_string("coordinate_transformation_mode", c.opset >= 11 ? "half_pixel" : "asymmetric");
+  std::string nearest = c.node.get_string("nearest_mode", "round_prefer_floor");
+  if (c.node.get_int("antialias", 0)) throw OpError("antialias=1 is not supported");
+  if (c.node.has("axes")) throw OpError("the axes attribute is not supported");
+  int64_t rank = x.dim();
+  std::vector<double> scales(rank, 1.0);
+  std::vector<int64_t> sizes(rank);
+  size_t scales_index = c.opset >= 11 ? 2 : 1, sizes_index = 3;
+  if (c.has(sizes_index) && c.input(sizes_index).numel() > 0) {
+    sizes = ints_of(c.input(sizes_index));
+    if (int64_t(sizes.size()) != rank) throw OpError("sizes has the wrong length");
+    for (int64_t i = 0; i < rank; ++i) scales[i] = double(sizes[i]) / double(x.size(i));
+  } else if (c.has(scales_index) && c.input(scales_index).numel() > 0) {
+    at::Tensor s = c.input(scales_index).to(at::kDouble).contiguous();
+    if (s.numel() != rank) throw OpError("scales has the wrong length");
+    for (int64_t i = 0; i < rank; ++i) {
+      scales[i] = s.data_ptr<double>()[i];
+      sizes[i] = int64_t(std::floor(double(x.size(i)) * scales[i]));
+    }
+  } else {
+    throw OpError("neither scales nor sizes given");
+  }
+  if (mode != "linear" && mode != "nearest") throw OpError("mode '" + mode + "' is not supported");
+  at::Tensor y = x;
+  bool is_float = at::isFloatingType(x.scalar_type());
+  for (int64_t axis = 0; axis < rank; ++axis) {
+    int64_t in = x.size(axis), out = sizes[axis];
+    if (in == out && scales[axis] == 1.0) continue;
+    std::vector<int64_t> i0(out), i1(out);
+    std::vector<float> w(out);
+    for (int64_t o = 0; o < out; ++o) {
+      double s = resize_source(coord, double(o), scales[axis], in, out);
+      if (mode == "linear") {
+        s = std::min(std::max(s, 0.0), double(in - 1));
+        int64_t a = int64_t(std::floor(s));
+        i0[o] = a;
+        i1[o] = std::min(a + 1, in - 1);
+        w[o] = float(s - double(a));
+      } else {
+        double r;
+        if (nearest == "floor") r = std::floor(s);
+        else if (nearest == "ceil") r = std::ceil(s);
+        else if (nearest == "round_prefer_ceil") r = std::floor(s + 0.5);
+        else if (nearest == "round_prefer_floor") r = (s - std::floor(s) == 0.5) ? std::floor(s) : std::round(s);
+        else throw OpError("nearest_mode '" + nearest + "' is not supported");
+        i0[o] = std::min(std::max<int64_t>(int64_t(r), 0), in - 1);
+      }
+    }
+    at::Tensor idx0 = at::tensor(i0, at::kLong);
+    if (mode == "nearest") {
+      y = at::index_select(y, axis, idx0);
+      continue;
+    }
+    if (!is_float) throw OpError("linear resize of a non-float tensor is not supported");
+    std::vector<int64_t> wshape(rank, 1);
+    wshape[axis] = out;
+    at::Tensor wt = at::tensor(w, at::kFloat).to(x.scalar_type()).reshape(wshape);
+    at::Tensor a = at::index_select(y, axis, idx0);
+    at::Tensor b = at::index_select(y, axis, at::tensor(i1, at::kLong));
+    y = at::lerp(a, b, wt);
+  }
+  c.out = {y.contiguous()};
+}
+
+// ---------------------------------------------------------------- convolution
+
+void conv_pads(const Ctx& c, const at::Tensor& x, const std::vector<int64_t>& kernel, const std::vector<int64_t>& strides,
+               const std::vector<int64_t>& dilations, std::vector<int64_t>& begin, std::vector<int64_t>& end) {
+  size_t k = kernel.size();
+  std::string auto_pad = c.node.get_string("auto_pad", "NOTSET");
+  begin.assign(k, 0);
+  end.assign(k, 0);
+  if (auto_pad == "NOTSET") {
+    std::vector<int64_t> pads = c.node.get_ints("pads", std::vector<int64_t>(2 * k, 0));
+    if (pads.size() != 2 * k) throw OpError("pads has the wrong length");
+    for (size_t i = 0; i < k; ++i) begin[i] = pads[i], end[i] = pads[i + k];
+  } else if (auto_pad == "SAME_UPPER" || auto_pad == "SAME_LOWER") {
+    for (size_t i = 0; i < k; ++i) {
+      int64_t in = x.size(2 + i);
+      int64_t out = (in + strides[i] - 1) / strides[i];
+      int64_t total = std::max<int64_t>(0, (out - 1) * strides[i] + (kernel[i] - 1) * dilations[i] + 1 - in);
+      int64_t small = total / 2, big = total - small;
+      begin[i] = auto_pad == "SAME_UPPER" ? small : big;
+      end[i] = auto_pad == "SAME_UPPER" ? big : small;
+    }
+  } else if (auto_pad != "VALID") {
+    throw OpError("auto_pad '" + auto_pad + "' is not supported");
+  }
+}
+
+void op_conv(Ctx& c) {
+  at::Tensor x = c.input(0);
+  const at::Tensor& w = c.input(1);
+  at::Tensor b = c.has(2) ? c.in[2] : at::Tensor();
+  int64_t k = w.dim() - 2;
+  if (x.dim() != w.dim()) throw OpError("input rank " + std::to_string(x.dim()) + " does not match weight rank " + std::to_string(w.dim()));
+  std::vector<int64_t> kernel(w.sizes().begin() + 2, w.sizes().end());
+  std::vector<int64_t> strides = c.node.get_ints("strides", std::vector<int64_t>(k, 1));
+  std::vector<int64_t> dilations = c.node.get_ints("dilations", std::vector<int64_t>(k, 1));
+  int64_t group = c.node.get_int("group", 1);
+  std::vector<int64_t> begin, end;
+  conv_pads(c, x, kernel, strides, dilations, begin, end);
+  std::vector<int64_t> padding(k, 0);
+  if (begin == end) {
+    padding = begin;
+  } else {
+    std::vector<int64_t> tp;
+    for (int64_t i = k - 1; i >= 0; --i) tp.push_back(begin[i]), tp.push_back(end[i]);
+    x = at::constant_pad_nd(x, tp, 0);
+  }
+  if (x.size(1) != w.size(1) * group)
+    throw OpError("input has " + std::to_string(x.size(1)) + " channels, weight expects " + std::to_string(w.size(1) * group));
+  std::vector<int64_t> output_padding(k, 0);
+  c.out = {at::convolution(x, w, b, strides, padding, dilations, false, output_padding, group)};
+}
+
+void op_conv_transpose(Ctx& c) {
+  const at::Tensor& x = c.input(0);
+  const at::Tensor& w = c.input(1);
+  at::Tensor b = c.has(2) ? c.in[2] : at::Tensor();
+  int64_t k = w.dim() - 2;
+  std::vector<int64_t> kernel(w.sizes().begin() + 2, w.sizes().end());
+  std::vector<int64_t> strides = c.node.get_ints("strides", std::vector<int64_t>(k, 1));
+  std::vector<int64_t> dilations = c.node.get_ints("dilations", std::vector<int64_t>(k, 1));
+  std::vector<int64_t> out_pad = c.node.get_ints("output_padding", std::vector<int64_t>(k, 0));
+  int64_t group = c.node.get_int("group", 1);
+  std::vector<int64_t> pads = c.node.get_ints("pads", std::vector<int64_t>(2 * k, 0));
+  std::string auto_pad = c.node.get_string("auto_pad", "NOTSET");
+  if (c.node.has("output_shape") || (auto_pad != "NOTSET" && auto_pad != "VALID"))
+    throw OpError("output_shape / auto_pad are not supported");
+  std::vector<int64_t> begin(pads.begin(), pads.begin() + k), end(pads.begin() + k, pads.end());
+  if (begin == end) {
+    c.out = {at::convolution(x, w, b, strides, begin, dilations, true, out_pad, group)};
+    return;
+  }
+  // Asymmetric pads: compute the full result and crop it.
+  at::Tensor full = at::convolution(x, w, {}, strides, std::vector<int64_t>(k, 0), dilations, true, out_pad, group);
+  at::Tensor y = full;
+  for (int64_t i = 0; i < k; ++i) {
+    int64_t len = full.size(2 + i) - begin[i] - end[i];
+    y = y.narrow(2 + i, begin[i], len);
+  }
+  if (b.defined()) {
+    std::vector<int64_t> bs(y.dim(), 1);
+    bs[1] = b.numel();
+    y = y + b.reshape(bs);
+  }
+  c.out = {y.contiguous()};
+}
+
+// ---------------------------------------------------------------- shapes and indexing
+
+void op_slice(Ctx& c) {
+  const at::Tensor& x = c.input(0);
+  std::vector<int64_t> starts, ends, axes, steps;
+  if (c.opset < 10) {
+    starts = c.node.get_ints("starts", {});
+    ends = c.node.get_ints("ends", {});
+    axes = c.node.get_ints("axes", {});
+  } else {
+    starts = ints_of(c.input(1));
+    ends = ints_of(c.input(2));
+    if (c.has(3)) axes = ints_of(c.in[3]);
+    if (c.has(4)) steps = ints_of(c.in[4]);
+  }
+  if (axes.empty())
+    for (size_t i = 0; i < starts.size(); ++i) axes.push_back(int64_t(i));
+  if (steps.empty()) steps.assign(starts.size(), 1);
+  if (ends.size() != starts.size() || axes.size() != starts.size() || steps.size() != starts.size())
+    throw OpError("starts/ends/axes/steps lengths differ");
+  at::Tensor y = x;
+  for (size_t i = 0; i < starts.size(); ++i) {
+    int64_t axis = norm_axis(axes[i], x.dim());
+    int64_t dim = x.size(axis), step = steps[i];
+    if (step == 0) throw OpError("step 0");
+    int64_t s = starts[i], e = ends[i];
+    if (s < 0) s += dim;
+    if (e < 0) e += dim;
+    if (step > 0) {
+      s = std::clamp<int64_t>(s, 0, dim);
+      e = std::clamp<int64_t>(e, 0, dim);
+      y = at::slice(y, axis, s, std::max(s, e), step);
+    } else {
+      s = std::clamp<int64_t>(s, 0, dim - 1);
+      e = std::clamp<int64_t>(e, -1, dim - 1);
+      std::vector<int64_t> idx;
+      for (int64_t j = s; j > e; j += step) idx.push_back(j);
+      y = at::index_select(y, axis, at::tensor(idx, at::kLong));
+    }
+  }
+  c.out = {y};
+}
+
+void op_gather(Ctx& c) {
+  const at::Tensor& x = c.input(0);
+  int64_t axis = norm_axis(c.node.get_int("axis", 0), x.dim());
+  at::Tensor idx = c.input(1).to(at::kLong);
+  idx = at::where(idx < 0, idx + x.size(axis), idx);
+  std::vector<int64_t> shape(x.sizes().begin(), x.sizes().begin() + axis);
+  for (int64_t d : idx.sizes()) shape.push_back(d);
+  for (int64_t i = axis + 1; i < x.dim(); ++i) shape.push_back(x.size(i));
+  c.out = {at::index_select(x, axis, idx.reshape({-1})).reshape(shape)};
+}
+
+void op_reshape(Ctx& c) {
+  const at::Tensor& x = c.input(0);
+  std::vector<int64_t> shape = c.opset >= 5 ? ints_of(c.input(1)) : c.node.get_ints("shape", {});
+  bool allowzero = c.node.get_int("allowzero", 0) != 0;
+  for (size_t i = 0; i < shape.size(); ++i)
+    if (shape[i] == 0 && !allowzero) {
+      if (int64_t(i) >= x.dim()) throw OpError("shape has 0 at an axis the input lacks");
+      shape[i] = x.size(int64_t(i));
+    }
+  try {
+    c.out = {x.reshape(shape)};
+  } catch (const c10::Error&) {
+    throw OpError("cannot reshape " + shape_str(x.sizes()) + " to " + shape_str(shape));
+  }
+}
+
+void op_unsqueeze(Ctx& c) {
+  at::Tensor x = c.input(0);
+  std::vector<int64_t> axes = c.opset >= 13 ? ints_of(c.input(1)) : c.node.get_ints("axes", {});
+  int64_t out_rank = x.dim() + int64_t(axes.size());
+  for (auto& a : axes) a = norm_axis(a, out_rank);
+  std::sort(axes.begin(), axes.end());
+  for (int64_t a : axes) x = x.unsqueeze(a);
+  c.out = {x};
+}
+
+void op_squeeze(Ctx& c) {
+  at::Tensor x = c.input(0);
+  std::vector<int64_t> axes;
+  if (c.opset >= 13) {
+    if (c.has(1)) axes = ints_of(c.in[1]);
+  } else {
+    axes = c.node.get_ints("axes", {});
+  }
+  if (axes.empty()) {
+    std::vector<int64_t> shape;
+    for (int64_t d : x.sizes())
+      if (d != 1) shape.push_back(d);
+    c.out = {x.reshape(shape)};
+    return;
+  }
+  for (auto& a : axes) a = norm_axis(a, x.dim());
+  std::sort(axes.rbegin(), axes.rend());
+  for (int64_t a : axes) {
+    if (x.size(a) != 1) throw OpError("cannot squeeze axis " + std::to_string(a) + " of size " + std::to_string(x.size(a)));
+    x = x.squeeze(a);
+  }
+  c.out = {x};
+}
+
+void op_transpose(Ctx& c) {
+  const at::Tensor& x = c.input(0);
+  std::vector<int64_t> perm = c.node.get_ints("perm", {});
+  if (perm.empty())
+    for (int64_t i = x.dim() - 1; i >= 0; --i) perm.push_back(i);
+  if (int64_t(perm.size()) != x.dim()) throw OpError("perm length does not match rank " + std::to_string(x.dim()));
+  c.out = {x.permute(perm)};
+}
+
+void op_concat(Ctx& c) {
+  std::vector<at::Tensor> parts;
+  for (const auto& t : c.in)
+    if (t.defined()) parts.push_back(t);
+  if (parts.empty()) throw OpError("no inputs");
+  int64_t axis = norm_axis(c.node.get_int("axis", 0), parts[0].dim());
+  // ONNX allows empty tensors of any type among the parts (e.g. empty shape vectors).
+  at::ScalarType type = parts[0].scalar_type();
+  for (auto& p : parts)
+    if (p.scalar_type() != type) p = p.to(type);
+  c.out = {at::cat(parts, axis)};
+}
+
+void op_split(Ctx& c) {
+  const at::Tensor& x = c.input(0);
+  int64_t axis = norm_axis(c.node.get_int("axis", 0), x.dim());
+  std::vector<int64_t> split;
+  if (c.node.has("split")) split = c.node.get_ints("split", {});
+  else if (c.has(1)) split = ints_of(c.in[1]);
+  size_t n = c.node.outputs.size();
+  if (split.empty()) {
+    int64_t parts = c.node.has("num_outputs") ? c.node.get_int("num_outputs", 1) : int64_t(n);
+    int64_t each = (x.size(axis) + parts - 1) / parts;
+    for (int64_t i = 0, left = x.size(axis); i < parts; ++i, left -= each) split.push_back(std::min(each, left));
+  }
+  int64_t total = 0;
+  for (int64_t s : split) total += s;
+  if (total != x.size(axis)) throw OpError("split sizes do not add up to the axis size " + std::to_string(x.size(axis)));
+  std::vector<at::Tensor> parts = at::split_with_sizes(x, split, axis);
+  c.out.assign(parts.begin(), parts.end());
+}
+
+void op_expand(Ctx& c) {
+  const at::Tensor& x = c.input(0);
+  std::vector<int64_t> shape = broadcast_shapes(x.sizes().vec(), ints_of(c.input(1)));
+  c.out = {x.expand(shape)};
+}
+
+void op_tile(Ctx& c) {
+  std::vector<int64_t> reps = ints_of(c.input(1));
+  if (int64_t(reps.size()) != c.input(0).dim()) throw OpError("repeats length does not match the rank");
+  c.out = {c.input(0).repeat(reps)};
+}
+
+void op_shape(Ctx& c) {
+  std::vector<int64_t> s = c.input(0).sizes().vec();
+  int64_t r = int64_t(s.size());
+  int64_t start = c.node.get_int("start", 0), end = c.node.get_int("end", r);
+  if (start < 0) start += r;
+  if (end < 0) end += r;
+  start = std::clamp<int64_t>(start, 0, r);
+  end = std::clamp<int64_t>(end, start, r);
+  c.out = {at::tensor(std::vector<int64_t>(s.begin() + start, s.begin() + end), at::kLong)};
+}
+
+at::Tensor tensor_attr(const Node& n, const std::string& a) { return to_aten(n.attrs.at(a).t).clone(); }
+
+void op_constant(Ctx& c) {
+  const Node& n = c.node;
+  if (n.has("value")) c.out = {tensor_attr(n, "value")};
+  else if (n.has("value_float")) c.out = {at::scalar_tensor(n.get_float("value_float", 0), at::kFloat)};
+  else if (n.has("value_int")) c.out = {at::scalar_tensor(n.get_int("value_int", 0), at::kLong)};
+  else if (n.has("value_floats")) c.out = {at::tensor(n.attrs.at("value_floats").floats, at::kFloat)};
+  else if (n.has("value_ints")) c.out = {at::tensor(n.attrs.at("value_ints").ints, at::kLong)};
+  else throw OpError("no supported value attribute");
+}
+
+void op_constant_of_shape(Ctx& c) {
+  std::vector<int64_t> shape = ints_of(c.input(0));
+  at::Tensor v = c.node.has("value") ? tensor_attr(c.node, "value") : at::zeros({1}, at::kFloat);
+  c.out = {at::full(shape, v.reshape({-1})[0].item(), at::TensorOptions().dtype(v.scalar_type()))};
+}
+
+void op_range(Ctx& c) {
+  const at::Tensor& start = c.input(0);
+  at::ScalarType t = start.scalar_type();
+  if (at::isIntegralType(t, false)) {
+    int64_t s = int64_t(scalar_of(start)), l = int64_t(scalar_of(c.input(1))), d = int64_t(scalar_of(c.input(2)));
+    if (d == 0) throw OpError("delta 0");
+    int64_t n = std::max<int64_t>(0, (l - s + d + (d > 0 ? -1 : 1)) / d);
+    c.out = {(at::arange(n, at::kLong) * d + s).to(t)};
+  } else {
+    double s = scalar_of(start), l = scalar_of(c.input(1)), d = scalar_of(c.input(2));
+    int64_t n = std::max<int64_t>(0, int64_t(std::ceil((l - s) / d)));
+    c.out = {(at::arange(n, at::kDouble) * d + s).to(t)};
+  }
+}
+
+void op_one_hot(Ctx& c) {
+  at::Tensor idx = c.input(0).to(at::kLong);
+  int64_t depth = int64_t(scalar_of(c.input(1)));
+  const at::Tensor& values = c.input(2);
+  idx = at::where(idx < 0, idx + depth, idx);
+  at::Tensor hot = idx.unsqueeze(-1) == at::arange(depth, at::kLong);
+  at::Tensor v = values.reshape({-1});
+  at::Tensor y = at::where(hot, v[1], v[0]);
+  int64_t axis = c.node.get_int("axis", -1);
+  int64_t rank = y.dim();
+  axis = norm_axis(axis, rank);
+  if (axis != rank - 1) y = y.movedim(rank - 1, axis);
+  c.out = {y.contiguous()};
+}
+
+void op_pad(Ctx& c) {
+  const at::Tensor& x = c.input(0);
+  std::string mode = c.node.get_string("mode", "constant");
+  std::vector<int64_t> pads;
+  double value = 0;
+  std::vector<int64_t> axes;
+  if (c.opset >= 11) {
+    pads = ints_of(c.input(1));
+    if (c.has(2) && c.in[2].numel() > 0) value = scalar_of(c.in[2]);
+    if (c.has(3)) axes = ints_of(c.in[3]);
+  } else {
+    pads = c.node.get_ints("pads", {});
+    value = c.node.get_float("value", 0);
+  }
+  int64_t r = x.dim();
+  if (axes.empty())
+    for (int64_t i = 0; i < r; ++i) axes.push_back(i);
+  if (pads.size() != 2 * axes.size()) throw OpError("pads has the wrong length");
+  std::vector<int64_t> begin(r, 0), end(r, 0);
+  for (size_t i = 0; i < axes.size(); ++i) {
+    int64_t a = norm_axis(axes[i], r);
+    begin[a] = pads[i];
+    end[a] = pads[i + axes.size()];
+  }
+  // ATen wants pairs from the last axis backwards; trim leading all-zero axes.
+  int64_t first = 0;
+  while (first < r && begin[first] == 0 && end[first] == 0) ++first;
+  std::vector<int64_t> tp;
+  for (int64_t i = r - 1; i >= first; --i) tp.push_back(begin[i]), tp.push_back(end[i]);
+  if (tp.empty()) { c.out = {x}; return; }
+  if (mode == "constant") c.out = {at::constant_pad_nd(x, tp, value)};
+  else if (mode == "reflect") c.out = {at::pad(x, tp, "reflect")};
+  else if (mode == "edge") c.out = {at::pad(x, tp, "replicate")};
+  else throw OpError("mode '" + mode + "' is not supported");
+}
+
+// ---------------------------------------------------------------- neural-network ops
+
+void op_matmul(Ctx& c) { c.out = {at::matmul(c.input(0), c.input(1))}; }
+
+void op_gemm(Ctx& c) {
+  at::Tensor a = c.input(0), b = c.input(1);
+  if (c.node.get_int("transA", 0)) a = a.t();
+  if (c.node.get_int("transB", 0)) b = b.t();
+  double alpha = c.node.get_float("alpha", 1.0f), beta = c.node.get_float("beta", 1.0f);
+  if (c.has(2)) c.out = {at::addmm(c.in[2], a, b, beta, alpha)};
+  else c.out = {alpha == 1.0 ? at::mm(a, b) : at::mm(a, b) * alpha};
+}
+
+void op_softmax(Ctx& c, bool log) {
+  const at::Tensor& x = c.input(0);
+  if (c.opset >= 13) {
+    int64_t axis = norm_axis(c.node.get_int("axis", -1), x.dim());
+    c.out = {log ? at::log_softmax(x, axis) : at::softmax(x, axis)};
+    return;
+  }
+  int64_t axis = norm_axis(c.node.get_int("axis", 1), x.dim());
+  if (axis == x.dim() - 1) {
+    c.out = {log ? at::log_softmax(x, axis) : at::softmax(x, axis)};
+    return;
+  }
+  int64_t rows = 1;
+  for (int64_t i = 0; i < axis; ++i) rows *= x.size(i);
+  at::Tensor f = x.reshape({rows, -1});
+  c.out = {(log ? at::log_softmax(f, 1) : at::softmax(f, 1)).reshape(x.sizes())};
+}
+
+void op_layer_norm(Ctx& c) {
+  const at::Tensor& x = c.input(0);
+  int64_t axis = norm_axis(c.node.get_int("axis", -1), x.dim());
+  double eps = c.node.get_float("epsilon", 1e-5f);
+  std::vector<int64_t> shape(x.sizes().begin() + axis, x.sizes().end());
+  at::Tensor scale = c.input(1);
+  at::Tensor bias = c.has(2) ? c.in[2] : at::Tensor();
+  if (scale.sizes().vec() != shape) scale = scale.expand(shape).contiguous();
+  if (bias.defined() && bias.sizes().vec() != shape) bias = bias.expand(shape).contiguous();
+  c.out.assign(c.node.outputs.size(), at::Tensor());
+  c.out[0] = at::layer_norm(x, shape, scale, bias, eps);
+  if (c.node.outputs.size() > 1) {
+    std::vector<int64_t> dims;
+    for (int64_t i = axis; i < x.dim(); ++i) dims.push_back(i);
+    at::Tensor mean = x.mean(dims, true);
+    c.out[1] = mean;
+    if (c.node.outputs.size() > 2) c.out[2] = at::rsqrt((x - mean).pow(2).mean(dims, true) + eps);
+  }
+}
+
+void op_batch_norm(Ctx& c) {
+  c.out = {at::batch_norm(c.input(0), c.input(1), c.input(2), c.input(3), c.input(4), false, 0.0,
+                          c.node.get_float("epsilon", 1e-5f), false)};
+}
+
+void op_instance_norm(Ctx& c) {
+  c.out = {at::instance_norm(c.input(0), c.input(1), c.input(2), {}, {}, true, 0.0, c.node.get_float("epsilon", 1e-5f),
+                             false)};
+}
+
+void op_clip(Ctx& c) {
+  at::Tensor x = c.input(0);
+  if (c.opset >= 11) {
+    if (c.has(1)) x = at::maximum(x, c.in[1].to(x.scalar_type()));
+    if (c.has(2)) x = at::minimum(x, c.in[2].to(x.scalar_type()));
+  } else {
+    x = at::clamp(x, c.node.get_float("min", -INFINITY), c.node.get_float("max", INFINITY));
+  }
+  c.out = {x};
+}
+
+void op_argmax(Ctx& c, bool is_max) {
+  at::Tensor x = c.input(0);
+  int64_t axis = norm_axis(c.node.get_int("axis", 0), x.dim());
+  bool keep = c.node.get_int("keepdims", 1) != 0;
+  if (c.node.get_int("select_last_index", 0)) {
+    at::Tensor flipped = x.flip(axis);
+    at::Tensor i = is_max ? at::argmax(flipped, axis, keep) : at::argmin(flipped, axis, keep);
+    c.out = {x.size(axis) - 1 - i};
+    return;
+  }
+  c.out = {is_max ? at::argmax(x, axis, keep) : at::argmin(x, axis, keep)};
+}
+
+void op_cast(Ctx& c) { c.out = {c.input(0).to(onnx_code_to_scalar_type(c.node.get_int("to", 1)))}; }
+
+template <class F>
+OpFn variadic(F f) {
+  return [f](Ctx& c) {
+    at::Tensor acc = c.input(0);
+    for (size_t i = 1; i < c.in.size(); ++i)
+      if (c.in[i].defined()) acc = f(acc, c.in[i]);
+    c.out = {acc};
+  };
+}
+
+const std::map<std::string, OpFn>& registry() {
+  static const std::map<std::string, OpFn> reg = [] {
+    std::map<std::string, OpFn> r;
+    binary(r, "Add", [](const at::Tensor& a, const at::Tensor& b) { return a + b; });
+    binary(r, "Sub", [](const at::Tensor& a, const at::Tensor& b) { return a - b; });
+    binary(r, "Mul", [](const at::Tensor& a, const at::Tensor& b) { return a * b; });
+    binary(r, "Div", onnx_div);
+    binary(r, "Pow", onnx_pow);
+    binary(r, "Equal", [](const at::Tensor& a, const at::Tensor& b) { return at::eq(a, b); });
+    binary(r, "Less", [](const at::Tensor& a, const at::Tensor& b) { return at::lt(a, b); });
+    binary(r, "LessOrEqual", [](const at::Tensor& a, const at::Tensor& b) { return at::le(a, b); });
+    binary(r, "Greater", [](const at::Tensor& a, const at::Tensor& b) { return at::gt(a, b); });
+    binary(r, "GreaterOrEqual", [](const at::Tensor& a, const at::Tensor& b) { return at::ge(a, b); });
+    binary(r, "And", [](const at::Tensor& a, const at::Tensor& b) { return at::logical_and(a, b); });
+    binary(r, "Or", [](const at::Tensor& a, const at::Tensor& b) { return at::logical_or(a, b); });
+    binary(r, "Xor", [](const at::Tensor& a, const at::Tensor& b) { return at::logical_xor(a, b); });
+    r["Mod"] = [](Ctx& c) {
+      c.out = {c.node.get_int("fmod", 0) ? at::fmod(c.input(0), c.input(1)) : at::remainder(c.input(0), c.input(1))};
+    };
+    r["Max"] = variadic([](const at::Tensor& a, const at::Tensor& b) { return at::maximum(a, b); });
+    r["Min"] = variadic([](const at::Tensor& a, const at::Tensor& b) { return at::minimum(a, b); });
+    r["Sum"] = variadic([](const at::Tensor& a, const at::Tensor& b) { return a + b; });
+    r["Mean"] = [](Ctx& c) {
+      at::Tensor acc = c.input(0);
+      for (size_t i = 1; i < c.in.size(); ++i) acc = acc + c.in[i];
+      c.out = {acc / double(c.in.size())};
+    };
+    unary(r, "Sqrt", at::sqrt);
+    unary(r, "Erf", at::erf);
+    unary(r, "Exp", at::exp);
+    unary(r, "Log", at::log);
+    unary(r, "Sin", at::sin);
+    unary(r, "Cos", at::cos);
+    unary(r, "Tan", at::tan);
+    unary(r, "Atan", at::atan);
+    unary(r, "Tanh", at::tanh);
+    unary(r, "Sigmoid", at::sigmoid);
+    unary(r, "Relu", at::relu);
+    unary(r, "Abs", at::abs);
+    unary(r, "Neg", at::neg);
+    unary(r, "Floor", at::floor);
+    unary(r, "Ceil", at::ceil);
+    unary(r, "Round", at::round);
+    unary(r, "Reciprocal", at::reciprocal);
+    unary(r, "Not", at::logical_not);
+    unary(r, "Sign", at::sign);
+    unary(r, "IsNaN", at::isnan);
+    unary(r, "Softplus", [](const at::Tensor& x) { return at::softplus(x); });
+    unary(r, "Softsign", [](const at::Tensor& x) { return x / (at::abs(x) + 1); });
+    unary(r, "HardSwish", [](const at::Tensor& x) { return at::hardswish(x); });
+    r["Identity"] = [](Ctx& c) { c.out = {c.input(0)}; };
+    r["Dropout"] = [](Ctx& c) {
+      c.out = {c.input(0)};
+      if (c.node.outputs.size() > 1) c.out.push_back(at::ones(c.input(0).sizes(), at::kBool));
+    };
+    r["LeakyRelu"] = [](Ctx& c) { c.out = {at::leaky_relu(c.input(0), c.node.get_float("alpha", 0.01f))}; };
+    r["Elu"] = [](Ctx& c) { c.out = {at::elu(c.input(0), c.node.get_float("alpha", 1.0f))}; };
+    r["HardSigmoid"] = [](Ctx& c) {
+      c.out = {at::clamp(c.input(0) * c.node.get_float("alpha", 0.2f) + c.node.get_float("beta", 0.5f), 0, 1)};
+    };
+    r["Gelu"] = [](Ctx& c) {
+      c.out = {at::gelu(c.input(0), c.node.get_string("approximate", "none") == "tanh" ? "tanh" : "none")};
+    };
+    r["Clip"] = op_clip;
+    r["Cast"] = op_cast;
+    r["CastLike"] = [](Ctx& c) { c.out = {c.input(0).to(c.input(1).scalar_type())}; };
+    r["Where"] = [](Ctx& c) {
+      at::Tensor a = c.input(1), b = c.input(2);
+      c.out = {at::where(c.input(0).to(at::kBool), a, b.to(a.scalar_type()))};
+    };
+
+    r["ReduceMean"] = reduce_op([](const at::Tensor& x, at::IntArrayRef a, bool k) { return at::mean(x, a, k); });
+    r["ReduceSum"] = reduce_op([](const at::Tensor& x, at::IntArrayRef a, bool k) { return at::sum(x, a, k, x.scalar_type()); });
+    r["ReduceMax"] = reduce_op([](const at::Tensor& x, at::IntArrayRef a, bool k) { return at::amax(x, a, k); });
+    r["ReduceMin"] = reduce_op([](const at::Tensor& x, at::IntArrayRef a, bool k) { return at::amin(x, a, k); });
+    r["ReduceProd"] = reduce_op([](const at::Tensor& x, at::IntArrayRef a, bool k) {
+      std::vector<int64_t> axes(a.begin(), a.end());
+      std::sort(axes.rbegin(), axes.rend());
+      at::Tensor y = x;
+      for (int64_t ax : axes) y = at::prod(y, ax, k);
+      return y;
+    });
+    r["ReduceL2"] = reduce_op([](const at::Tensor& x, at::IntArrayRef a, bool k) { return at::sqrt(at::sum(x * x, a, k)); });
+    r["ArgMax"] = [](Ctx& c) { op_argmax(c, true); };
+    r["ArgMin"] = [](Ctx& c) { op_argmax(c, false); };
+    r["CumSum"] = [](Ctx& c) {
+      if (c.node.get_int("exclusive", 0) || c.node.get_int("reverse", 0)) throw OpError("exclusive/reverse are not supported");
+      c.out = {at::cumsum(c.input(0), norm_axis(int64_t(scalar_of(c.input(1))), c.input(0).dim()))};
+    };
+
+    r["Shape"] = op_shape;
+    r["Size"] = [](Ctx& c) { c.out = {at::scalar_tensor(c.input(0).numel(), at::kLong)}; };
+    r["Reshape"] = op_reshape;
+    r["Flatten"] = [](Ctx& c) {
+      const at::Tensor& x = c.input(0);
+      int64_t axis = c.node.get_int("axis", 1);
+      if (axis < 0) axis += x.dim();
+      int64_t rows = 1;
+      for (int64_t i = 0; i < axis; ++i) rows *= x.size(i);
+      c.out = {x.reshape({rows, rows == 0 ? 0 : -1})};
+    };
+    r["Squeeze"] = op_squeeze;
+    r["Unsqueeze"] = op_unsqueeze;
+    r["Transpose"] = op_transpose;
+    r["Concat"] = op_concat;
+    r["Split"] = op_split;
+    r["Slice"] = op_slice;
+    r["Gather"] = op_gather;
+    r["GatherElements"] = [](Ctx& c) {
+      const at::Tensor& x = c.input(0);
+      int64_t axis = norm_axis(c.node.get_int("axis", 0), x.dim());
+      at::Tensor idx = c.input(1).to(at::kLong);
+      idx = at::where(idx < 0, idx + x.size(axis), idx);
+      c.out = {at::gather(x, axis, idx)};
+    };
+    r["Expand"] = op_expand;
+    r["Tile"] = op_tile;
+    r["Constant"] = op_constant;
+    r["ConstantOfShape"] = op_constant_of_shape;
+    r["Range"] = op_range;
+    r["OneHot"] = op_one_hot;
+    r["Pad"] = op_pad;
+    r["Einsum"] = [](Ctx& c) {
+      std::vector<at::Tensor> ins;
+      for (const auto& t : c.in) ins.push_back(t);
+      c.out = {at::einsum(c.node.get_string("equation", ""), ins)};
+    };
+
+    r["MatMul"] = op_matmul;
+    r["Gemm"] = op_gemm;
+    r["Conv"] = op_conv;
+    r["ConvTranspose"] = op_conv_transpose;
+    r["Softmax"] = [](Ctx& c) { op_softmax(c, false); };
+    r["LogSoftmax"] = [](Ctx& c) { op_softmax(c, true); };
+    r["LayerNormalization"] = op_layer_norm;
+    r["BatchNormalization"] = op_batch_norm;
+    r["InstanceNormalization"] = op_instance_norm;
+    r["GlobalAveragePool"] = [](Ctx& c) {
+      const at::Tensor& x = c.input(0);
+      std::vector<int64_t> dims;
+      for (int64_t i = 2; i < x.dim(); ++i) dims.push_back(i);
+      c.out = {x.mean(dims, true)};
+    };
+    r["Resize"] = op_resize;
+    return r;
+  }();
+  return reg;
+}
+
+}  // namespace
+
+struct OnnxGraph::Impl {
+  OnnxModel model;
+  // Nodes left after folding, with inputs/outputs resolved to slots.
+  struct Step {
+    const Node* node;
+    const OpFn* fn;
+    std::vector<int> in, out;  // -1: omitted
+    std::vector<int> release;  // slots whose last use is this step
+  };
+  std::vector<Step> steps;
+  std::unordered_map<std::string, int> slot_of;
+  std::vector<at::Tensor> constants;  // by slot; undefined for runtime values
+  std::vector<std::pair<std::string, int>> input_slots, output_slots;
+  int slots = 0;
+
+  int slot(const std::string& name) {
+    auto it = slot_of.find(name);
+    if (it != slot_of.end()) return it->second;
+    slot_of[name] = slots;
+    constants.emplace_back();
+    return slots++;
+  }
+
+  [[noreturn]] void fail(const Node& n, const std::string& problem, const std::vector<at::Tensor>& ins) const {
+    std::ostringstream s;
+    s << n.label() << ": " << problem << " (inputs:";
+    for (size_t i = 0; i < ins.size(); ++i) {
+      s << (i ? ", " : " ");
+      if (!ins[i].defined()) s << "none";
+      else s << c10::toString(ins[i].scalar_type()) << shape_str(ins[i].sizes());
+    }
+    s << ")";
+    throw Error(model.path, s.str());
+  }
+
+  void execute(const Node& n, const OpFn& fn, Ctx& ctx) const {
+    try {
+      fn(ctx);
+    } catch (const OpError& e) {
+      fail(n, e.what(), ctx.in);
+    } catch (const c10::Error& e) {
+      std::string msg = e.what_without_backtrace();
+      fail(n, msg.substr(0, msg.find('\n')), ctx.in);
+    }
+    if (ctx.out.size() < n.outputs.size()) fail(n, "produced fewer outputs than the node declares", ctx.in);
+  }
+};
+
+OnnxGraph::OnnxGraph(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  c10::InferenceMode guard;
+  Impl& m = *impl_;
+  m.model = load_onnx(path);
+  const auto& reg = registry();
+  for (const Node& n : m.model.nodes) {
+    if (!(n.domain.empty() || n.domain == "ai.onnx") || !reg.count(n.op_type))
+      throw Error(path, n.label() + ": unsupported operator" +
+                            (n.domain.empty() ? std::string() : " (domain '" + n.domain + "')") +
+                            "; the executor implements the ops listed in docs/sam.md");
+    for (const auto& [name, a] : n.attrs)
+      if (a.kind == Attribute::Kind::Graph) throw Error(path, n.label() + ": subgraph attributes are not supported");
+  }
+  for (auto& [name, t] : m.model.initializers) m.constants[m.slot(name)] = to_aten(t);
+  m.model.initializers.clear();  // the ATen tensors share the bytes
+  for (const auto& v : m.model.inputs) m.input_slots.emplace_back(v.name, m.slot(v.name));
+  // Fold nodes whose inputs are all constants; keep the rest as steps.
+  for (const Node& n : m.model.nodes) {
+    const OpFn& fn = reg.at(n.op_type);
+    std::vector<int> ins, outs;
+    bool constant = true;
+    for (const auto& name : n.inputs) {
+      if (name.empty()) { ins.push_back(-1); continue; }
+      int s = m.slot(name);
+      ins.push_back(s);
+      if (!m.constants[s].defined()) constant = false;
+    }
+    for (const auto& name : n.outputs) outs.push_back(name.empty() ? -1 : m.slot(name));
+    if (constant) {
+      Ctx ctx{n, m.model.opset, {}, {}};
+      for (int s : ins) ctx.in.push_back(s < 0 ? at::Tensor() : m.constants[s]);
+      m.execute(n, fn, ctx);
+      for (size_t i = 0; i < outs.size(); ++i)
+        if (outs[i] >= 0) m.constants[outs[i]] = ctx.out[i].contiguous();
+      continue;
+    }
+    m.steps.push_back({&n, &fn, ins, outs, {}});
+  }
+  for (const auto& v : m.model.outputs) m.output_slots.emplace_back(v.name, m.slot(v.name));
+  // Free each runtime value after its last use (graph outputs are kept).
+  std::vector<int> last_use(m.slots, -1);
+  for (size_t i = 0; i < m.steps.size(); ++i)
+    for (int s : m.steps[i].in)
+      if (s >= 0 && !m.constants[s].defined()) last_use[s] = int(i);
+  for (const auto& [name, s] : m.output_slots) last_use[s] = -1;
+  for (int s = 0; s < m.slots; ++s)
+    if (last_use[s] >= 0) m.steps[last_use[s]].release.push_back(s);
+  // Drop constants nothing uses any more (folded intermediates).
+  std::vector<char> used(m.slots, 0);
+  for (const auto& st : m.steps)
+    for (int s : st.in)
+      if (s >= 0) used[s] = 1;
+  for (const auto& [name, s] : m.output_slots) used[s] = 1;
+  for (int s = 0; s < m.slots; ++s)
+    if (!used[s]) m.constants[s] = at::Tensor();
+}
+
+OnnxGraph::~OnnxGraph() = default;
+
+const std::string& OnnxGraph::path() const { return impl_->model.path; }
+const std::vector<ValueInfo>& OnnxGraph::inputs() const { return impl_->model.inputs; }
+const std::vector<ValueInfo>& OnnxGraph::outputs() const { return impl_->model.outputs; }
+size_t OnnxGraph::node_count() const { return impl_->steps.size(); }
+
+std::vector<std::string> OnnxGraph::op_types() const {
+  std::set<std::string> s;
+  for (const auto& st : impl_->steps) s.insert(st.node->op_type);
+  return {s.begin(), s.end()};
+}
+
+std::vector<std::string> OnnxGraph::supported_ops() {
+  std::vector<std::string> v;
+  for (const auto& [name, fn] : registry()) v.push_back(name);
+  return v;
+}
+
+std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, HostTensor>& feeds) const {
+  c10::InferenceMode guard;
+  const Impl& m = *impl_;
+  std::vector<at::Tensor> env = m.constants;
+  for (const auto& [name, s] : m.input_slots) {
+    auto it = feeds.find(name);
+    if (it == feeds.end()) throw Error(m.model.path, "input '" + name + "' was not given");
+    env[s] = to_aten(it->second);
+  }
+  for (const auto& [name, t] : feeds)
+    if (!m.slot_of.count(name)) throw Error(m.model.path, "the graph has no input named '" + name + "'");
+  for (const auto& st : m.steps) {
+    Ctx ctx{*st.node, m.model.opset, {}, {}};
+    ctx.in.reserve(st.in.size());
+    for (int s : st.in) {
+      if (s >= 0 && !env[s].defined())
+        m.fail(*st.node, "input '" + st.node->inputs[ctx.in.size()] + "' has no value", ctx.in);
+      ctx.in.push_back(s < 0 ? at::Tensor() : env[s]);
+    }
+    m.execute(*st.node, *st.fn, ctx);
+    for (size_t i = 0; i < st.out.size(); ++i)
+      if (st.out[i] >= 0) env[st.out[i]] = std::move(ctx.out[i]);
+    for (int s : st.release) env[s] = at::Tensor();
+  }
+  std::map<std::string, HostTensor> result;
+  for (const auto& [name, s] : m.output_slots) {
+    if (!env[s].defined()) throw Error(m.model.path, "output '" + name + "' was not produced");
+    result[name] = to_host(env[s]);
+  }
+  return result;
+}
+
+}  // namespace isegman::models

@@ -1,0 +1,46 @@
+// A small ONNX graph executor on libtorch (ATen) CPU tensors. Loads an .onnx file, folds
+// every node whose inputs are constants once at load time, and runs the rest node by node
+// in file order with dynamic shapes (shapes are whatever the tensors carry at run time).
+// An operator without an implementation, or one that fails on the shapes it receives,
+// raises isegman::Error naming the model file and the node.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "models/onnx_model.h"
+
+namespace isegman::models {
+
+// Sets libtorch's intra-op thread count (0: all cores) once per process, and sets
+// OMP_WAIT_POLICY=PASSIVE when the environment does not say otherwise.
+void configure_threads(int threads = 0);
+
+class OnnxGraph {
+ public:
+  explicit OnnxGraph(const std::string& path);
+  ~OnnxGraph();
+  OnnxGraph(const OnnxGraph&) = delete;
+  OnnxGraph& operator=(const OnnxGraph&) = delete;
+
+  const std::string& path() const;
+  const std::vector<ValueInfo>& inputs() const;
+  const std::vector<ValueInfo>& outputs() const;
+  // Operator types the graph uses after constant folding, sorted, unique.
+  std::vector<std::string> op_types() const;
+  size_t node_count() const;  // nodes left after folding
+
+  // Runs the graph. `feeds` must hold every graph input; returns every graph output.
+  std::map<std::string, HostTensor> run(const std::map<std::string, HostTensor>& feeds) const;
+
+  // Every operator type the executor implements (default ONNX domain).
+  static std::vector<std::string> supported_ops();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace isegman::models

