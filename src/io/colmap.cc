@@ -132,10 +132,13 @@ std::vector<std::string> tokens(const std::string& line) {
   return out;
 }
 
+// The characters std::isspace (and so `tokens`) treats as white space in the C locale.
+const char kSpace[] = " \t\n\v\f\r";
+
 std::string trim(const std::string& s) {
-  size_t b = s.find_first_not_of(" \t\r\n");
+  size_t b = s.find_first_not_of(kSpace);
   if (b == std::string::npos) return "";
-  size_t e = s.find_last_not_of(" \t\r\n");
+  size_t e = s.find_last_not_of(kSpace);
   return s.substr(b, e - b + 1);
 }
 
@@ -323,13 +326,14 @@ std::vector<ColmapImage> parse_colmap_images_txt(const std::string& text, const 
     im.t.y = parse_double(tok[6], src, line_no, "TY");
     im.t.z = parse_double(tok[7], src, line_no, "TZ");
     im.camera_id = uint32_t(parse_uint(tok[8], src, line_no, "camera id", UINT32_MAX));
-    // The name is the rest of the line, so names with spaces survive.
+    // The name is the rest of the line after nine tokens (split on the same whitespace
+    // as `tokens`), so names with spaces survive.
     size_t pos = 0;
     for (int k = 0; k < 9; ++k) {
-      pos = line.find_first_not_of(" \t", pos);
-      pos = line.find_first_of(" \t", pos);
+      pos = line.find_first_not_of(kSpace, pos);
+      pos = line.find_first_of(kSpace, pos);
     }
-    im.name = trim(line.substr(pos));
+    im.name = pos == std::string::npos ? std::string() : trim(line.substr(pos));
     if (!ids.insert(im.image_id).second)
       throw Error(src, "line " + std::to_string(line_no) + ": image id " + std::to_string(im.image_id) +
                            " appears twice");

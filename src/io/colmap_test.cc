@@ -239,6 +239,16 @@ TEST(Colmap, InvalidContentIsRefused) {
   expect_error([] { parse_colmap_images_txt("1 1 0 0 inf 0 0 0 1 a.png\n", "i.txt"); }, {"QZ", "not finite"});
 }
 
+// Fuzzer finding: tokens were split on all white space (\f, \v too) but the name was
+// located by spaces and tabs only, so substr() threw std::out_of_range.
+TEST(Colmap, FuzzRegressionFormFeedBeforeTheName) {
+  std::vector<ColmapImage> images = parse_colmap_images_txt("1 1 0 0 0 0 0 0 2\fb.png\n\n", "i.txt");
+  ASSERT_EQ(images.size(), 1u);
+  EXPECT_EQ(images[0].name, "b.png");
+  images = parse_colmap_images_txt("1 1 0 0 0 0 0 0 2 my photo.png \v\n\n", "i.txt");
+  EXPECT_EQ(images[0].name, "my photo.png");
+}
+
 TEST(Colmap, ImageWithMissingCameraNamesBothFiles) {
   std::vector<ColmapCamera> cams = parse_colmap_cameras_txt("1 PINHOLE 10 10 5 5 5 5\n", "cams.txt");
   std::vector<ColmapImage> images = parse_colmap_images_txt("1 1 0 0 0 0 0 0 2 a.png\n\n", "imgs.txt");
