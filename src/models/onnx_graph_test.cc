@@ -1,0 +1,294 @@
+// The ONNX executor on small graphs built here: operator semantics where ONNX and ATen
+// differ, dynamic shapes, constant folding, and errors that name the node.
+#include "models/onnx_graph.h"
+
+#include <gtest/gtest.h>
+#include <onnx/onnx_pb.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "core/error.h"
+
+using namespace isegman;
+using namespace isegman::models;
+
+namespace {
+
+class Builder {
+ public:
+  explicit Builder(int opset = 17) {
+    m_.set_ir_version(8);
+    m_.add_opset_import()->set_version(opset);
+    g_ = m_.mutable_graph();
+    g_->set_name("test");
+  }
+  // dims: -1 for a dynamic axis.
+  void input(const std::string& name, const std::vector<int64_t>& dims, int elem = onnx::TensorProto_DataType_FLOAT) {
+    auto* v = g_->add_input();
+    v->set_name(name);
+    auto* t = v->mutable_type()->mutable_tensor_type();
+    t->set_elem_type(elem);
+    for (int64_t d : dims) {
+      auto* dim = t->mutable_shape()->add_dim();
+      if (d < 0) dim->set_dim_param("N");
+      else dim->set_dim_value(d);
+    }
+  }
+  void output(const std::string& name) { g_->add_output()->set_name(name); }
+  onnx::NodeProto* node(const std::string& op, const std::vector<std::string>& in, const std::vector<std::string>& out,
+                        const std::string& name = "") {
+    auto* n = g_->add_node();
+    n->set_op_type(op);
+    n->set_name(name.empty() ? op + std::to_string(g_->node_size()) : name);
+    for (const auto& s : in) n->add_input(s);
+    for (const auto& s : out) n->add_output(s);
+    return n;
+  }
+  void floats(const std::string& name, const std::vector<int64_t>& dims, const std::vector<float>& v) {
+    auto* t = g_->add_initializer();
+    t->set_name(name);
+    t->set_data_type(onnx::TensorProto_DataType_FLOAT);
+    for (int64_t d : dims) t->add_dims(d);
+    for (float f : v) t->add_float_data(f);
+  }
+  void ints(const std::string& name, const std::vector<int64_t>& dims, const std::vector<int64_t>& v) {
+    auto* t = g_->add_initializer();
+    t->set_name(name);
+    t->set_data_type(onnx::TensorProto_DataType_INT64);
+    for (int64_t d : dims) t->add_dims(d);
+    t->set_raw_data(std::string(reinterpret_cast<const char*>(v.data()), v.size() * 8));
+  }
+  std::string save() {
+    static int counter = 0;
+    std::string path = "/tmp/isegman_onnx_test_" + std::to_string(getpid()) + "_" + std::to_string(counter++) + ".onnx";
+    std::ofstream o(path, std::ios::binary);
+    m_.SerializeToOstream(&o);
+    return path;
+  }
+
+ private:
+  onnx::ModelProto m_;
+  onnx::GraphProto* g_;
+};
+
+void attr_int(onnx::NodeProto* n, const std::string& name, int64_t v) {
+  auto* a = n->add_attribute();
+  a->set_name(name);
+  a->set_type(onnx::AttributeProto_AttributeType_INT);
+  a->set_i(v);
+}
+void attr_ints(onnx::NodeProto* n, const std::string& name, const std::vector<int64_t>& v) {
+  auto* a = n->add_attribute();
+  a->set_name(name);
+  a->set_type(onnx::AttributeProto_AttributeType_INTS);
+  for (int64_t x : v) a->add_ints(x);
+}
+void attr_string(onnx::NodeProto* n, const std::string& name, const std::string& v) {
+  auto* a = n->add_attribute();
+  a->set_name(name);
+  a->set_type(onnx::AttributeProto_AttributeType_STRING);
+  a->set_s(v);
+}
+
+std::vector<float> floats_of(const HostTensor& t) { return {t.data<float>(), t.data<float>() + t.numel()}; }
+std::vector<int64_t> ints_of(const HostTensor& t) { return {t.data<int64_t>(), t.data<int64_t>() + t.numel()}; }
+
+struct Graph {
+  std::string path;
+  std::unique_ptr<OnnxGraph> g;
+  explicit Graph(Builder& b) : path(b.save()), g(std::make_unique<OnnxGraph>(path)) {}
+  ~Graph() { std::remove(path.c_str()); }
+};
+
+}  // namespace
+
+TEST(OnnxGraph, UnsupportedOperatorNamesTheNode) {
+  Builder b;
+  b.input("x", {2});
+  b.output("y");
+  b.node("FancyNewOp", {"x"}, {"y"}, "my_fancy_node");
+  std::string path = b.save();
+  try {
+    OnnxGraph g(path);
+    FAIL() << "loaded a graph with an unknown operator";
+  } catch (const Error& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find("my_fancy_node"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("FancyNewOp"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("unsupported"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(path), std::string::npos) << msg;
+  }
+  std::remove(path.c_str());
+}
+
+TEST(OnnxGraph, ShapeMismatchNamesTheNodeAndShapes) {
+  Builder b;
+  b.input("x", {-1, 3});
+  b.floats("w", {4, 2}, std::vector<float>(8, 1.f));
+  b.output("y");
+  b.node("MatMul", {"x", "w"}, {"y"}, "projection");
+  Graph g(b);
+  try {
+    g.g->run({{"x", HostTensor::from_floats({2, 3}, std::vector<float>(6, 1.f))}});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    std::string msg = e.what();
+    EXPECT_NE(msg.find("projection"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("[2,3]"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("[4,2]"), std::string::npos) << msg;
+  }
+  EXPECT_THROW(g.g->run({}), Error);  // missing input
+}
+
+TEST(OnnxGraph, DynamicShapesThroughShapeArithmetic) {
+  // y = Reshape(x, [Shape(x)[0], -1]) @ w, for any batch size.
+  Builder b(13);
+  b.input("x", {-1, 2, 2});
+  b.floats("w", {4, 1}, {1, 2, 3, 4});
+  b.ints("zero", {1}, {0});
+  b.ints("minus_one", {1}, {-1});
+  b.output("y");
+  b.node("Shape", {"x"}, {"s"});
+  attr_int(b.node("Gather", {"s", "zero"}, {"n"}), "axis", 0);
+  attr_int(b.node("Concat", {"n", "minus_one"}, {"shape"}), "axis", 0);
+  b.node("Reshape", {"x", "shape"}, {"flat"});
+  b.node("MatMul", {"flat", "w"}, {"y"});
+  Graph g(b);
+  for (int n : {1, 3}) {
+    std::vector<float> x(size_t(n) * 4);
+    for (size_t i = 0; i < x.size(); ++i) x[i] = float(i);
+    auto out = g.g->run({{"x", HostTensor::from_floats({n, 2, 2}, x)}});
+    ASSERT_EQ(out["y"].shape, (std::vector<int64_t>{n, 1}));
+    for (int r = 0; r < n; ++r)
+      EXPECT_FLOAT_EQ(out["y"].data<float>()[r], x[r * 4] * 1 + x[r * 4 + 1] * 2 + x[r * 4 + 2] * 3 + x[r * 4 + 3] * 4);
+  }
+}
+
+TEST(OnnxGraph, FoldsConstantSubgraphs) {
+  Builder b(13);
+  b.input("x", {3});
+  b.floats("c", {3}, {1, 2, 3});
+  b.output("y");
+  b.node("Mul", {"c", "c"}, {"c2"});  // constant: folded at load
+  b.node("Neg", {"c2"}, {"c3"});      // constant: folded at load
+  b.node("Add", {"x", "c3"}, {"y"});
+  Graph g(b);
+  EXPECT_EQ(g.g->node_count(), 1u);
+  EXPECT_EQ(g.g->op_types(), std::vector<std::string>{"Add"});
+  auto out = g.g->run({{"x", HostTensor::from_floats({3}, {10, 10, 10})}});
+  EXPECT_EQ(floats_of(out["y"]), (std::vector<float>{9, 6, 1}));
+}
+
+TEST(OnnxGraph, SliceClampsAndSteps) {
+  Builder b(13);
+  b.input("x", {6});
+  b.ints("starts", {1}, {-1});
+  b.ints("ends", {1}, {-100});
+  b.ints("axes", {1}, {0});
+  b.ints("steps", {1}, {-2});
+  b.ints("s2", {1}, {2});
+  b.ints("e2", {1}, {INT64_MAX});
+  b.output("rev");
+  b.output("tail");
+  b.node("Slice", {"x", "starts", "ends", "axes", "steps"}, {"rev"});
+  b.node("Slice", {"x", "s2", "e2"}, {"tail"});
+  Graph g(b);
+  auto out = g.g->run({{"x", HostTensor::from_floats({6}, {0, 1, 2, 3, 4, 5})}});
+  EXPECT_EQ(floats_of(out["rev"]), (std::vector<float>{5, 3, 1}));
+  EXPECT_EQ(floats_of(out["tail"]), (std::vector<float>{2, 3, 4, 5}));
+}
+
+TEST(OnnxGraph, GatherWithNegativeAndScalarIndices) {
+  Builder b(13);
+  b.input("x", {2, 3});
+  b.ints("idx", {2}, {-1, 0});
+  b.ints("one", {}, {1});
+  b.output("cols");
+  b.output("row");
+  attr_int(b.node("Gather", {"x", "idx"}, {"cols"}), "axis", 1);
+  attr_int(b.node("Gather", {"x", "one"}, {"row"}), "axis", 0);
+  Graph g(b);
+  auto out = g.g->run({{"x", HostTensor::from_floats({2, 3}, {0, 1, 2, 3, 4, 5})}});
+  EXPECT_EQ(out["cols"].shape, (std::vector<int64_t>{2, 2}));
+  EXPECT_EQ(floats_of(out["cols"]), (std::vector<float>{2, 0, 5, 3}));
+  EXPECT_EQ(out["row"].shape, (std::vector<int64_t>{3}));
+  EXPECT_EQ(floats_of(out["row"]), (std::vector<float>{3, 4, 5}));
+}
+
+TEST(OnnxGraph, ResizeLinearHalfPixel) {
+  Builder b(17);
+  b.input("x", {1, 1, 1, 2});
+  b.ints("sizes", {4}, {1, 1, 1, 4});
+  b.output("y");
+  auto* n = b.node("Resize", {"x", "", "", "sizes"}, {"y"});
+  attr_string(n, "mode", "linear");
+  attr_string(n, "coordinate_transformation_mode", "half_pixel");
+  Graph g(b);
+  auto out = g.g->run({{"x", HostTensor::from_floats({1, 1, 1, 2}, {0, 1})}});
+  std::vector<float> y = floats_of(out["y"]);
+  std::vector<float> want = {0, 0.25f, 0.75f, 1};
+  ASSERT_EQ(y.size(), 4u);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(y[i], want[i], 1e-6);
+}
+
+TEST(OnnxGraph, SoftmaxBeforeOpset13FlattensAtTheAxis) {
+  Builder b(12);
+  b.input("x", {1, 2, 2});
+  b.output("y");
+  attr_int(b.node("Softmax", {"x"}, {"y"}), "axis", 1);
+  Graph g(b);
+  auto out = g.g->run({{"x", HostTensor::from_floats({1, 2, 2}, {0, 1, 2, 3})}});
+  std::vector<float> y = floats_of(out["y"]);
+  double z = 1 + std::exp(1.0) + std::exp(2.0) + std::exp(3.0);  // one softmax over all four
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(y[i], std::exp(double(i)) / z, 1e-6);
+}
+
+TEST(OnnxGraph, ConvWithAsymmetricPadsAndGroups) {
+  // Two channels, depthwise 1x2 kernels, pads (left 1, right 0).
+  Builder b(13);
+  b.input("x", {1, 2, 1, 3});
+  b.floats("w", {2, 1, 1, 2}, {1, 10, 2, 20});
+  b.floats("bias", {2}, {0.5f, -0.5f});
+  b.output("y");
+  auto* n = b.node("Conv", {"x", "w", "bias"}, {"y"});
+  attr_int(n, "group", 2);
+  attr_ints(n, "pads", {0, 1, 0, 0});
+  attr_ints(n, "kernel_shape", {1, 2});
+  Graph g(b);
+  auto out = g.g->run({{"x", HostTensor::from_floats({1, 2, 1, 3}, {1, 2, 3, 4, 5, 6})}});
+  ASSERT_EQ(out["y"].shape, (std::vector<int64_t>{1, 2, 1, 3}));
+  // channel 0 padded: [0,1,2,3] -> 1*a + 10*b over pairs; channel 1: [0,4,5,6] with 2, 20.
+  std::vector<float> want = {10.5f, 21.5f, 32.5f, 79.5f, 107.5f, 129.5f};
+  EXPECT_EQ(floats_of(out["y"]), want);
+}
+
+TEST(OnnxGraph, ExpandOneHotWhereRange) {
+  Builder b(13);
+  b.input("x", {3, 1});
+  b.ints("shape", {2}, {1, 2});
+  b.ints("labels", {3}, {0, -1, 1});
+  b.ints("depth", {}, {3});
+  b.floats("onoff", {2}, {0, 7});
+  b.ints("r0", {}, {2});
+  b.ints("r1", {}, {9});
+  b.ints("r2", {}, {3});
+  b.output("expanded");
+  b.output("hot");
+  b.output("picked");
+  b.output("range");
+  b.node("Expand", {"x", "shape"}, {"expanded"});  // [3,1] with [1,2] -> [3,2]
+  b.node("OneHot", {"labels", "depth", "onoff"}, {"hot"});
+  b.node("Greater", {"hot", "x"}, {"mask"});
+  b.node("Where", {"mask", "hot", "x"}, {"picked"});
+  b.node("Range", {"r0", "r1", "r2"}, {"range"});
+  Graph g(b);
+  auto out = g.g->run({{"x", HostTensor::from_floats({3, 1}, {1, 2, 3})}});
+  EXPECT_EQ(out["expanded"].shape, (std::vector<int64_t>{3, 2}));
+  EXPECT_EQ(floats_of(out["expanded"]), (std::vector<float>{1, 1, 2, 2, 3, 3}));
+  EXPECT_EQ(floats_of(out["hot"]), (std::vector<float>{7, 0, 0, 0, 0, 7, 0, 7, 0}));  // -1 wraps to depth-1
+  EXPECT_EQ(floats_of(out["picked"]), (std::vector<float>{7, 1, 1, 2, 2, 7, 3, 7, 3}));
+  EXPECT_EQ(ints_of(out["range"]), (std::vector<int64_t>{2, 5, 8}));
+}
