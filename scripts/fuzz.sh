@@ -4,7 +4,8 @@
 #   scripts/fuzz.sh [seconds per fuzzer, default 120] [fuzzer ...]
 # Fuzzers: ply_fuzzer colmap_fuzzer npy_fuzzer (default: all). Environment:
 #   FUZZ_BUILD_DIR (default build-fuzz), JOBS (ninja -j, default 1), FUZZ_FORKS (parallel
-#   fuzzing processes per fuzzer, default 1). Crashes land in $FUZZ_BUILD_DIR/artifacts;
+#   fuzzing processes per fuzzer, default 1), FUZZ_KEEP_GOING=1 (fork mode that records
+#   crashes, timeouts and OOMs and keeps fuzzing). Crashes land in $FUZZ_BUILD_DIR/artifacts;
 #   the growing corpus in $FUZZ_BUILD_DIR/corpus/<fuzzer> is kept between runs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,7 +23,7 @@ command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found (run scripts
 sanitize="-fsanitize=address,undefined -fsanitize=fuzzer-no-link -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  -DISEGMAN_FUZZ=ON -DISEGMAN_BUILD_TESTS=OFF -DISEGMAN_BUILD_BENCH=OFF \
+  -DISEGMAN_FUZZ=ON -DISEGMAN_BUILD_BENCH=OFF \
   -DCMAKE_C_FLAGS="$sanitize" -DCMAKE_CXX_FLAGS="$sanitize" >/dev/null
 ninja -C "$build" -j"$jobs" make_fuzz_seeds "${fuzzers[@]}"
 
@@ -36,7 +37,11 @@ mkdir -p "$build/artifacts"
 export ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=0:abort_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 extra=()
-[ "$forks" -gt 1 ] && extra=(-fork="$forks" -ignore_crashes=0)
+if [ "${FUZZ_KEEP_GOING:-0}" = 1 ]; then
+  extra=(-fork="$forks" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
+elif [ "$forks" -gt 1 ]; then
+  extra=(-fork="$forks")
+fi
 status=0
 for f in "${fuzzers[@]}"; do
   mkdir -p "$build/corpus/$f"
@@ -47,7 +52,7 @@ for f in "${fuzzers[@]}"; do
       -artifact_prefix="$build/artifacts/$f-" 2>&1 | tee "$build/$f.log" | grep -E "^#[0-9]+.*(NEW|DONE|pulse)|ERROR|SUMMARY|stat::|Done" ; then
     :
   fi
-  if grep -qE "ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer)|runtime error|SUMMARY: UndefinedBehaviorSanitizer" "$build/$f.log"; then
+  if grep -qE "ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer)|runtime error|SUMMARY: UndefinedBehaviorSanitizer|INFO: log from the inner process" "$build/$f.log"; then
     echo "fuzz.sh: $f found a problem; see $build/$f.log and $build/artifacts/" >&2
     status=1
   fi
