@@ -373,6 +373,7 @@ std::vector<Camera> colmap_to_cameras(const std::vector<ColmapCamera>& cameras,
     const ColmapCameraModel* m = colmap_model_by_id(cc.model_id);
     if (!m || cc.params.size() != size_t(m->num_params))
       throw Error(cameras_src, "camera " + std::to_string(cc.camera_id) + " has an invalid model");
+    check_camera(cc, cameras_src);  // also for cameras built in memory, before the int casts
     if (im->image_id > uint32_t(INT_MAX))
       throw Error(images_src, "image id " + std::to_string(im->image_id) + " is too large");
     Camera c;

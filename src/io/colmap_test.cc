@@ -255,6 +255,10 @@ TEST(Colmap, ImageWithMissingCameraNamesBothFiles) {
   expect_error([&] { colmap_to_cameras(cams, images, "cams.txt", "imgs.txt", "", nullptr); },
                {"imgs.txt", "'a.png'", "camera 2", "cams.txt"});
   expect_error([&] { colmap_to_cameras(cams, {}, "cams.txt", "imgs.txt", "", nullptr); }, {"imgs.txt", "no images"});
+  cams[0].width = uint64_t(1) << 33;  // built in memory: would wrap in an int
+  expect_error([&] { colmap_to_cameras(cams, parse_colmap_images_txt("1 1 0 0 0 0 0 0 1 a.png\n", "i"), "cams.txt",
+                                       "imgs.txt", "", nullptr); },
+               {"cams.txt", "implausible image size"});
 }
 
 TEST(Colmap, FisheyeAndOtherModelsByParameterCount) {
