@@ -7,8 +7,11 @@
 #include <c10/core/InferenceMode.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <cstdlib>
+#include <deque>
 #include <functional>
 #include <mutex>
 #include <set>
@@ -30,6 +33,10 @@ void configure_threads(int threads) {
 }
 
 namespace {
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 // An operator-level failure; the run loop adds the model file and the node.
 struct OpError : std::runtime_error {
@@ -252,6 +259,12 @@ void op_resize(Ctx& c) {
     throw OpError("neither scales nor sizes given");
   }
   if (mode != "linear" && mode != "nearest") throw OpError("mode '" + mode + "' is not supported");
+  if (mode == "linear" && rank == 4 && x.scalar_type() == at::kFloat && sizes[0] == x.size(0) && sizes[1] == x.size(1) &&
+      (coord == "half_pixel" || coord == "align_corners" || (coord == "pytorch_half_pixel" && sizes[2] > 1 && sizes[3] > 1))) {
+    // ATen's bilinear kernel computes the same source positions (clamped like ONNX Runtime).
+    c.out = {at::upsample_bilinear2d(x, {sizes[2], sizes[3]}, coord == "align_corners", scales[2], scales[3])};
+    return;
+  }
   at::Tensor y = x;
   bool is_float = at::isFloatingType(x.scalar_type());
   for (int64_t axis = 0; axis < rank; ++axis) {
@@ -319,6 +332,68 @@ void conv_pads(const Ctx& c, const at::Tensor& x, const std::vector<int64_t>& ke
   }
 }
 
+// 1x1 convolution as one matrix product per image: [Co,Ci] x [Ci,HW].
+at::Tensor conv1x1(const at::Tensor& x, const at::Tensor& w, const at::Tensor& b) {
+  int64_t n = x.size(0), ci = x.size(1), h = x.size(2), wd = x.size(3), co = w.size(0);
+  at::Tensor w2 = w.reshape({co, ci});
+  at::Tensor x3 = x.reshape({n, ci, h * wd});
+  at::Tensor y = b.defined() ? at::baddbmm(b.reshape({1, co, 1}).expand({n, co, h * wd}), w2.unsqueeze(0).expand({n, co, ci}), x3)
+                             : at::matmul(w2, x3);
+  return y.reshape({n, co, h, wd});
+}
+
+// Depthwise convolution (one filter per channel), direct loops parallel over channels:
+// ATen's CPU path without oneDNN would run one tiny convolution per group.
+at::Tensor depthwise_conv2d(const at::Tensor& x0, const at::Tensor& w0, const at::Tensor& b0, const std::vector<int64_t>& stride,
+                            const std::vector<int64_t>& pad, const std::vector<int64_t>& dil) {
+  at::Tensor x = x0.contiguous(), w = w0.contiguous();
+  int64_t n = x.size(0), ch = x.size(1), h = x.size(2), wd = x.size(3);
+  int64_t kh = w.size(2), kw = w.size(3);
+  int64_t oh = (h + 2 * pad[0] - dil[0] * (kh - 1) - 1) / stride[0] + 1;
+  int64_t ow = (wd + 2 * pad[1] - dil[1] * (kw - 1) - 1) / stride[1] + 1;
+  if (oh <= 0 || ow <= 0) throw OpError("depthwise convolution output would be empty");
+  at::Tensor y = at::empty({n, ch, oh, ow}, x.options());
+  const float* xp = x.data_ptr<float>();
+  const float* wp = w.data_ptr<float>();
+  at::Tensor b = b0.defined() ? b0.contiguous() : at::Tensor();
+  const float* bp = b.defined() ? b.data_ptr<float>() : nullptr;
+  float* yp = y.data_ptr<float>();
+  int64_t sy = stride[0], sx = stride[1], py = pad[0], px = pad[1], dy = dil[0], dx = dil[1];
+  at::parallel_for(0, n * ch, 1, [&](int64_t begin, int64_t end) {
+    std::vector<float> row(size_t(ow));
+    for (int64_t nc = begin; nc < end; ++nc) {
+      int64_t c = nc % ch;
+      const float* in = xp + nc * h * wd;
+      const float* k = wp + c * kh * kw;
+      float* out = yp + nc * oh * ow;
+      float bias = bp ? bp[c] : 0.f;
+      for (int64_t oy = 0; oy < oh; ++oy) {
+        float* o = out + oy * ow;
+        for (int64_t ox = 0; ox < ow; ++ox) o[ox] = bias;
+        for (int64_t ky = 0; ky < kh; ++ky) {
+          int64_t iy = oy * sy - py + ky * dy;
+          if (iy < 0 || iy >= h) continue;
+          const float* irow = in + iy * wd;
+          for (int64_t kx = 0; kx < kw; ++kx) {
+            float wv = k[ky * kw + kx];
+            int64_t off = kx * dx - px;
+            // Output columns whose input column lies inside the row.
+            int64_t lo = off < 0 ? (-off + sx - 1) / sx : 0;
+            int64_t hi = std::min(ow, (wd - off + sx - 1) / sx);
+            if (sx == 1) {
+              const float* src = irow + off;
+              for (int64_t ox = lo; ox < hi; ++ox) o[ox] += wv * src[ox];
+            } else {
+              for (int64_t ox = lo; ox < hi; ++ox) o[ox] += wv * irow[ox * sx + off];
+            }
+          }
+        }
+      }
+    }
+  });
+  return y;
+}
+
 void op_conv(Ctx& c) {
   at::Tensor x = c.input(0);
   const at::Tensor& w = c.input(1);
@@ -341,6 +416,17 @@ void op_conv(Ctx& c) {
   }
   if (x.size(1) != w.size(1) * group)
     throw OpError("input has " + std::to_string(x.size(1)) + " channels, weight expects " + std::to_string(w.size(1) * group));
+  bool unit = true;
+  for (int64_t i = 0; i < k; ++i) unit = unit && strides[i] == 1 && dilations[i] == 1;
+  if (k == 2 && group == 1 && unit && kernel[0] == 1 && kernel[1] == 1 && padding[0] == 0 && padding[1] == 0) {
+    c.out = {conv1x1(x, w, b)};
+    return;
+  }
+  if (k == 2 && group > 1 && group == x.size(1) && w.size(0) == group && w.size(1) == 1 &&
+      x.scalar_type() == at::kFloat && w.scalar_type() == at::kFloat) {
+    c.out = {depthwise_conv2d(x, w, b, strides, padding, dilations)};
+    return;
+  }
   std::vector<int64_t> output_padding(k, 0);
   c.out = {at::convolution(x, w, b, strides, padding, dilations, false, output_padding, group)};
 }
@@ -360,6 +446,19 @@ void op_conv_transpose(Ctx& c) {
   if (c.node.has("output_shape") || (auto_pad != "NOTSET" && auto_pad != "VALID"))
     throw OpError("output_shape / auto_pad are not supported");
   std::vector<int64_t> begin(pads.begin(), pads.begin() + k), end(pads.begin() + k, pads.end());
+  bool shuffle = k == 2 && group == 1 && x.scalar_type() == at::kFloat;
+  for (int64_t i = 0; i < k; ++i)
+    shuffle = shuffle && kernel[i] == strides[i] && dilations[i] == 1 && begin[i] == 0 && end[i] == 0 && out_pad[i] == 0;
+  if (shuffle) {
+    // Non-overlapping kernels: y[n,o,i*s+a,j*s+b] = sum_c x[n,c,i,j] w[c,o,a,b] + bias[o].
+    int64_t n = x.size(0), ci = x.size(1), h = x.size(2), wd = x.size(3), co = w.size(1), kh = kernel[0], kw = kernel[1];
+    at::Tensor xt = x.permute({0, 2, 3, 1}).reshape({n * h * wd, ci});
+    at::Tensor y = at::mm(xt, w.reshape({ci, co * kh * kw}));
+    y = y.reshape({n, h, wd, co, kh, kw}).permute({0, 3, 1, 4, 2, 5}).reshape({n, co, h * kh, wd * kw});
+    if (b.defined()) y = y + b.reshape({1, co, 1, 1});
+    c.out = {y};
+    return;
+  }
   if (begin == end) {
     c.out = {at::convolution(x, w, b, strides, begin, dilations, true, out_pad, group)};
     return;
@@ -877,6 +976,21 @@ const std::map<std::string, OpFn>& registry() {
   return reg;
 }
 
+// Internal operators the fusion pass creates (never read from files).
+const OpFn& fused_linear() {
+  // x @ W + b with W [K, N] constant and b [N]: one addmm over the flattened rows.
+  static const OpFn fn = [](Ctx& c) {
+    const at::Tensor& x = c.input(0);
+    const at::Tensor& w = c.input(1);
+    const at::Tensor& b = c.input(2);
+    if (x.dim() < 2 || x.size(-1) != w.size(0)) throw OpError("linear: inner dimensions differ");
+    std::vector<int64_t> shape = x.sizes().vec();
+    shape.back() = w.size(1);
+    c.out = {at::addmm(b, x.reshape({-1, w.size(0)}), w).reshape(shape)};
+  };
+  return fn;
+}
+
 }  // namespace
 
 struct OnnxGraph::Impl {
@@ -893,6 +1007,13 @@ struct OnnxGraph::Impl {
   std::vector<at::Tensor> constants;  // by slot; undefined for runtime values
   std::vector<std::pair<std::string, int>> input_slots, output_slots;
   int slots = 0;
+  std::deque<Node> fused_nodes;  // nodes made by the fusion pass (stable addresses)
+
+  bool const_scalar(int s, double v, double tol) const {
+    if (s < 0 || !constants[s].defined() || constants[s].numel() != 1) return false;
+    return std::fabs(constants[s].to(at::kDouble).reshape({-1})[0].item<double>() - v) < tol;
+  }
+  void fuse();
 
   int slot(const std::string& name) {
     auto it = slot_of.find(name);
@@ -966,6 +1087,7 @@ OnnxGraph::OnnxGraph(const std::string& path) : impl_(std::make_unique<Impl>()) 
     m.steps.push_back({&n, &fn, ins, outs, {}});
   }
   for (const auto& v : m.model.outputs) m.output_slots.emplace_back(v.name, m.slot(v.name));
+  m.fuse();
   // Free each runtime value after its last use (graph outputs are kept).
   std::vector<int> last_use(m.slots, -1);
   for (size_t i = 0; i < m.steps.size(); ++i)
@@ -982,6 +1104,83 @@ OnnxGraph::OnnxGraph(const std::string& path) : impl_(std::make_unique<Impl>()) 
   for (const auto& [name, s] : m.output_slots) used[s] = 1;
   for (int s = 0; s < m.slots; ++s)
     if (!used[s]) m.constants[s] = at::Tensor();
+}
+
+// Rewrites two patterns that exporters spell out op by op into single ATen calls:
+//   x / sqrt(2) -> Erf -> +1 -> *x -> *0.5       => Gelu(x)           (exact erf GELU)
+//   MatMul(x, W const) -> Add(b const)           => addmm(b, x, W)
+// Only chains whose intermediates have no other consumer are rewritten.
+void OnnxGraph::Impl::fuse() {
+  if (std::getenv("ISEGMAN_ONNX_NO_FUSION")) return;
+  std::vector<std::vector<int>> consumers(slots);
+  std::vector<int> producer(slots, -1);
+  for (size_t i = 0; i < steps.size(); ++i) {
+    for (int s : steps[i].in)
+      if (s >= 0) consumers[s].push_back(int(i));
+    for (int s : steps[i].out)
+      if (s >= 0) producer[s] = int(i);
+  }
+  std::vector<char> is_output(slots, 0);
+  for (const auto& [name, s] : output_slots) is_output[s] = 1;
+  auto single = [&](int s) -> int {  // the one consumer of an intermediate, or -1
+    if (s < 0 || is_output[s] || consumers[s].size() != 1) return -1;
+    return consumers[s][0];
+  };
+  auto op = [&](int i) -> const std::string& { return steps[i].node->op_type; };
+  auto other = [&](int i, int s) -> int {  // the other input of a binary step
+    const auto& in = steps[i].in;
+    if (in.size() != 2) return -2;
+    return in[0] == s ? in[1] : in[1] == s ? in[0] : -2;
+  };
+  std::vector<char> dead(steps.size(), 0);
+  const OpFn& gelu = registry().at("Gelu");
+  for (size_t e = 0; e < steps.size(); ++e) {
+    if (op(int(e)) != "Erf" || dead[e]) continue;
+    int scaled = steps[e].in[0];
+    int d = scaled >= 0 ? producer[scaled] : -1;
+    if (d < 0 || single(scaled) != int(e)) continue;
+    int x = -1;
+    if (op(d) == "Div" && const_scalar(steps[d].in[1], std::sqrt(2.0), 1e-3)) x = steps[d].in[0];
+    if (op(d) == "Mul" && const_scalar(steps[d].in[1], std::sqrt(0.5), 1e-3)) x = steps[d].in[0];
+    if (x < 0) continue;
+    int a = single(steps[e].out[0]);
+    if (a < 0 || op(a) != "Add" || !const_scalar(other(a, steps[e].out[0]), 1.0, 1e-6)) continue;
+    int m1 = single(steps[a].out[0]);
+    if (m1 < 0 || op(m1) != "Mul" || other(m1, steps[a].out[0]) != x) continue;
+    int m2 = single(steps[m1].out[0]);
+    if (m2 < 0 || op(m2) != "Mul" || !const_scalar(other(m2, steps[m1].out[0]), 0.5, 1e-6)) continue;
+    Node n;
+    n.name = steps[e].node->name + "+gelu";
+    n.op_type = "Gelu";
+    n.inputs = {steps[d].node->inputs[0]};
+    n.outputs = {steps[m2].node->outputs[0]};
+    fused_nodes.push_back(n);
+    steps[m2] = Step{&fused_nodes.back(), &gelu, {x}, {steps[m2].out[0]}, {}};
+    dead[d] = dead[e] = dead[a] = dead[m1] = 1;
+  }
+  for (size_t i = 0; i < steps.size(); ++i) {
+    if (dead[i] || op(int(i)) != "MatMul") continue;
+    int w = steps[i].in[1];
+    if (w < 0 || !constants[w].defined() || constants[w].dim() != 2 || constants[w].scalar_type() != at::kFloat) continue;
+    int a = single(steps[i].out[0]);
+    if (a < 0 || dead[a] || op(a) != "Add") continue;
+    int b = other(a, steps[i].out[0]);
+    if (b < 0 || !constants[b].defined() || constants[b].dim() != 1 || constants[b].size(0) != constants[w].size(1) ||
+        constants[b].scalar_type() != at::kFloat)
+      continue;
+    Node n;
+    n.name = steps[i].node->name + "+bias";
+    n.op_type = "FusedLinear";
+    n.inputs = {steps[i].node->inputs[0], steps[i].node->inputs[1], steps[a].node->inputs[steps[a].in[0] == b ? 0 : 1]};
+    n.outputs = {steps[a].node->outputs[0]};
+    fused_nodes.push_back(n);
+    steps[a] = Step{&fused_nodes.back(), &fused_linear(), {steps[i].in[0], w, b}, {steps[a].out[0]}, {}};
+    dead[i] = 1;
+  }
+  std::vector<Step> kept;
+  for (size_t i = 0; i < steps.size(); ++i)
+    if (!dead[i]) kept.push_back(std::move(steps[i]));
+  steps = std::move(kept);
 }
 
 OnnxGraph::~OnnxGraph() = default;
@@ -1014,6 +1213,9 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
   }
   for (const auto& [name, t] : feeds)
     if (!m.slot_of.count(name)) throw Error(m.model.path, "the graph has no input named '" + name + "'");
+  // ISEGMAN_ONNX_PROFILE=1 prints the time spent per operator type after each run.
+  static const bool profile = std::getenv("ISEGMAN_ONNX_PROFILE") != nullptr;
+  std::map<std::string, std::pair<double, int>> by_op;
   for (const auto& st : m.steps) {
     Ctx ctx{*st.node, m.model.opset, {}, {}};
     ctx.in.reserve(st.in.size());
@@ -1022,10 +1224,25 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
         m.fail(*st.node, "input '" + st.node->inputs[ctx.in.size()] + "' has no value", ctx.in);
       ctx.in.push_back(s < 0 ? at::Tensor() : env[s]);
     }
+    double t0 = profile ? now_ms() : 0;
     m.execute(*st.node, *st.fn, ctx);
+    if (profile) {
+      auto& [ms, count] = by_op[st.node->op_type];
+      ms += now_ms() - t0;
+      ++count;
+    }
     for (size_t i = 0; i < st.out.size(); ++i)
       if (st.out[i] >= 0) env[st.out[i]] = std::move(ctx.out[i]);
     for (int s : st.release) env[s] = at::Tensor();
+  }
+  if (profile) {
+    std::vector<std::pair<double, std::string>> rows;
+    double total = 0;
+    for (const auto& [op, v] : by_op) rows.emplace_back(v.first, op), total += v.first;
+    std::sort(rows.rbegin(), rows.rend());
+    std::fprintf(stderr, "%s: %.1f ms in %zu nodes\n", m.model.path.c_str(), total, m.steps.size());
+    for (const auto& [ms, op] : rows)
+      std::fprintf(stderr, "  %-20s %8.2f ms %5d nodes\n", op.c_str(), ms, by_op[op].second);
   }
   std::map<std::string, HostTensor> result;
   for (const auto& [name, s] : m.output_slots) {
