@@ -6,6 +6,8 @@
 #include <ATen/Parallel.h>
 #include <c10/core/InferenceMode.h>
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -26,8 +28,17 @@ namespace isegman::models {
 void configure_threads(int threads) {
   static std::once_flag once;
   std::call_once(once, [threads] {
-    setenv("OMP_WAIT_POLICY", "PASSIVE", 0);
-    int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    // Keep freed tensor memory in the heap: otherwise every large intermediate is a fresh
+    // mmap whose pages the kernel faults in and zeroes again (a third of the encoder's time).
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
+    // libgomp reads OMP_WAIT_POLICY once, when the process starts. With its default (spinning
+    // workers) two threads on a 2-core VM run up to 10x slower as soon as anything else wants
+    // a core, so more than one thread is the default only when the policy is PASSIVE.
+    const char* policy = std::getenv("OMP_WAIT_POLICY");
+    bool passive = policy && (std::string(policy) == "PASSIVE" || std::string(policy) == "passive");
+    int cores = int(std::max(1u, std::thread::hardware_concurrency()));
+    int n = threads > 0 ? threads : (passive ? cores : 1);
     at::set_num_threads(n);
   });
 }

@@ -14,8 +14,10 @@
 
 namespace isegman::models {
 
-// Sets libtorch's intra-op thread count (0: all cores) once per process, and sets
-// OMP_WAIT_POLICY=PASSIVE when the environment does not say otherwise.
+// Sets libtorch's intra-op thread count once per process (later calls do nothing) and
+// tunes malloc to reuse freed tensor memory. threads = 0: all cores when the process was
+// started with OMP_WAIT_POLICY=PASSIVE, else 1 (spinning OpenMP workers make 2 threads much
+// slower than 1 on small VMs; the policy cannot be changed once the process runs).
 void configure_threads(int threads = 0);
 
 class OnnxGraph {
