@@ -29,7 +29,6 @@ struct Splat {
   float opacity;         // activated
   float rgb[3];
   float depth;
-  float value;
   uint32_t index;        // Gaussian index in the scene
   int px0, py0, px1, py1;  // pixel box outside which alpha < 1/255 (inclusive, clipped)
   int tx0, ty0, tx1, ty1;  // tile rect [tx0, tx1) x [ty0, ty1)
@@ -80,7 +79,7 @@ inline int lanes_set(v8i mask) {
 
 // Projects Gaussian i; false when it cannot contribute to any pixel.
 bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera& cam, const RenderSettings& s,
-                    int degree, int grid_x, int grid_y, const std::vector<float>* values, Splat& out) {
+                    int degree, int grid_x, int grid_y, Splat& out) {
   const float opacity = 1.f / (1.f + std::exp(-scene.opacity[i]));
   if (!(opacity >= kMinAlpha)) return false;  // can never reach alpha 1/255
   float cov3[6];
@@ -119,7 +118,6 @@ bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera
   out.opacity = opacity;
   out.depth = f.depth;
   out.index = uint32_t(i);
-  out.value = values ? (*values)[i] : 0.f;
   if (s.color) {
     const float* p = &scene.positions[3 * i];
     float dx = p[0] - cam.center[0], dy = p[1] - cam.center[1], dz = p[2] - cam.center[2];
@@ -140,8 +138,8 @@ constexpr int kLanes = 8;
 // outside [x0, x1] untouched. The INRIA per-pixel rules, branch-free. Returns the
 // number of pixels that terminated.
 template <bool kVisit>
-inline int blend_group(const Splat& g, float dy, int k0, int x_base, int x0, int x1, int y, float alpha_max,
-                       bool want_value, TileBuffers& b, uint64_t& evaluated, uint64_t& contributed,
+inline int blend_group(const Splat& g, float value, float dy, int k0, int x_base, int x0, int x1, int y,
+                       float alpha_max, bool want_value, TileBuffers& b, uint64_t& evaluated, uint64_t& contributed,
                        ContributionVisitor* visitor, int worker) {
   static const v8f lane = {0, 1, 2, 3, 4, 5, 6, 7};
   const v8f xs = splat8(float(x_base)) + lane;
@@ -178,7 +176,7 @@ inline int blend_group(const Splat& g, float dy, int k0, int x_base, int x0, int
   std::memcpy(b.done + k0, &done, sizeof done);
   if (want_value) {
     std::memcpy(&V, b.V + k0, sizeof V);
-    V += w * splat8(g.value);
+    V += w * splat8(value);
     std::memcpy(b.V + k0, &V, sizeof V);
   }
   evaluated += uint64_t(lanes_set(active));
@@ -194,8 +192,9 @@ inline int blend_group(const Splat& g, float dy, int k0, int x_base, int x0, int
 
 template <bool kVisit>
 void raster_tile(int tile_x, int tile_y, const Splat* splats, const uint32_t* list, size_t count, int width,
-                 int height, const RenderSettings& s, bool want_value, ContributionVisitor* visitor, int worker,
+                 int height, const RenderSettings& s, const float* values, ContributionVisitor* visitor, int worker,
                  TileBuffers& b, uint64_t& evaluated, uint64_t& contributed) {
+  const bool want_value = values != nullptr;
   const int x_begin = tile_x * kTileSize, y_begin = tile_y * kTileSize;
   const int x_end = std::min(width, x_begin + kTileSize), y_end = std::min(height, y_begin + kTileSize);
   const int pixels = (x_end - x_begin) * (y_end - y_begin);
@@ -208,6 +207,7 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const uint32_t* li
   int finished = 0;
   for (size_t n = 0; n < count && finished < pixels; ++n) {
     const Splat& g = splats[list[n]];
+    const float value = want_value ? values[g.index] : 0.f;
     // Pixel box of this Gaussian inside the tile; columns past the image edge never count.
     const int x0 = std::max(g.px0, x_begin), x1 = std::min(g.px1, x_end - 1);
     const int y0 = std::max(g.py0, y_begin), y1 = std::min(g.py1, y_end - 1);
@@ -217,7 +217,7 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const uint32_t* li
       for (int half = 0; half < kTileSize / kLanes; ++half) {
         const int xb = x_begin + half * kLanes;
         if (xb > x1 || xb + kLanes - 1 < x0) continue;
-        finished += blend_group<kVisit>(g, dy, row + half * kLanes, xb, x0, x1, y, s.alpha_max, want_value, b,
+        finished += blend_group<kVisit>(g, value, dy, row + half * kLanes, xb, x0, x1, y, s.alpha_max, want_value, b,
                                         evaluated, contributed, visitor, worker);
       }
     }
@@ -226,11 +226,25 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const uint32_t* li
 
 }  // namespace
 
-RenderOutput render(const GaussianScene& scene, const Camera& camera, const RenderSettings& s,
-                    const std::vector<float>* values, ContributionVisitor* visitor) {
+struct PreparedFrame::Data {
+  std::vector<Splat> splats;          // visible Gaussians in depth order
+  std::vector<uint32_t> tile_start;   // tiles + 1 offsets into tile_list
+  std::vector<uint32_t> tile_list;    // per tile: indices into splats, front to back
+};
+
+PreparedFrame::PreparedFrame() = default;
+PreparedFrame::~PreparedFrame() = default;
+PreparedFrame::PreparedFrame(PreparedFrame&&) noexcept = default;
+PreparedFrame& PreparedFrame::operator=(PreparedFrame&&) noexcept = default;
+
+PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, const RenderSettings& s) {
   if (camera.width <= 0 || camera.height <= 0) throw Error("render: camera has zero image size");
-  if (values && values->size() != scene.size()) throw Error("render: per-Gaussian values do not match the scene size");
-  RenderOutput out;
+  PreparedFrame frame;
+  frame.camera = camera;
+  frame.gaussians = scene.size();
+  frame.data_ = std::make_unique<PreparedFrame::Data>();
+  PreparedFrame::Data& d = *frame.data_;
+  RenderStats& stats = frame.stats;
   const int W = camera.width, H = camera.height;
   const int grid_x = (W + kTileSize - 1) / kTileSize, grid_y = (H + kTileSize - 1) / kTileSize;
   const int degree = s.sh_degree < 0 ? scene.sh_degree : std::min(s.sh_degree, scene.sh_degree);
@@ -248,7 +262,7 @@ RenderOutput render(const GaussianScene& scene, const Camera& camera, const Rend
     v.reserve(kChunk);
     Splat sp;
     for (size_t i = c * kChunk, e = std::min(N, (c + 1) * kChunk); i < e; ++i)
-      if (preprocess_one(scene, i, cam, s, degree, grid_x, grid_y, values, sp)) v.push_back(sp);
+      if (preprocess_one(scene, i, cam, s, degree, grid_x, grid_y, sp)) v.push_back(sp);
   });
   size_t visible = 0;
   for (const auto& v : chunk_out) visible += v.size();
@@ -262,14 +276,15 @@ RenderOutput render(const GaussianScene& scene, const Camera& camera, const Rend
         std::memcpy(&keys[k], &v[j].depth, 4);
       }
   }
-  out.stats.visible = visible;
-  out.stats.ms_preprocess = ms_since(t0);
+  stats.visible = visible;
+  stats.ms_preprocess = ms_since(t0);
 
   // 2. Sort by depth (stable: ties keep index order, as the CUDA radix sort does), then
   //    bin into tiles in that order so every tile list is already depth-sorted.
   t0 = Clock::now();
   radix_sort_pairs(keys, order);
-  std::vector<Splat> splats(visible);
+  std::vector<Splat>& splats = d.splats;
+  splats.resize(visible);
   {
     std::vector<const Splat*> flat(visible);
     size_t k = 0;
@@ -280,12 +295,14 @@ RenderOutput render(const GaussianScene& scene, const Camera& camera, const Rend
   std::vector<uint32_t>().swap(order);
   std::vector<std::vector<Splat>>().swap(chunk_out);
   const size_t tiles = size_t(grid_x) * grid_y;
-  std::vector<uint32_t> tile_start(tiles + 1, 0);
+  std::vector<uint32_t>& tile_start = d.tile_start;
+  tile_start.assign(tiles + 1, 0);
   for (const Splat& g : splats)
     for (int ty = g.ty0; ty < g.ty1; ++ty)
       for (int tx = g.tx0; tx < g.tx1; ++tx) ++tile_start[size_t(ty) * grid_x + tx + 1];
   for (size_t t = 0; t < tiles; ++t) tile_start[t + 1] += tile_start[t];
-  std::vector<uint32_t> tile_list(tile_start[tiles]);
+  std::vector<uint32_t>& tile_list = d.tile_list;
+  tile_list.resize(tile_start[tiles]);
   {
     std::vector<uint32_t> fill(tile_start.begin(), tile_start.end() - 1);
     for (size_t k = 0; k < splats.size(); ++k) {
@@ -294,12 +311,30 @@ RenderOutput render(const GaussianScene& scene, const Camera& camera, const Rend
         for (int tx = g.tx0; tx < g.tx1; ++tx) tile_list[fill[size_t(ty) * grid_x + tx]++] = uint32_t(k);
     }
   }
-  out.stats.tile_pairs = tile_list.size();
-  out.stats.ms_sort = ms_since(t0);
+  stats.tile_pairs = tile_list.size();
+  stats.ms_sort = ms_since(t0);
 
-  // 3. Rasterise tiles in parallel.
-  t0 = Clock::now();
+  frame.grid_x = grid_x;
+  frame.grid_y = grid_y;
+  return frame;
+}
+
+RenderOutput rasterize(const PreparedFrame& frame, const RenderSettings& s, const std::vector<float>* values,
+                       ContributionVisitor* visitor, const std::vector<uint8_t>* tile_mask) {
+  if (values && values->size() != frame.gaussians) throw Error("render: per-Gaussian values do not match the scene size");
+  const int grid_x = frame.grid_x, grid_y = frame.grid_y;
+  const size_t tiles = size_t(grid_x) * grid_y;
+  if (tile_mask && tile_mask->size() != tiles) throw Error("render: tile mask does not match the frame");
+  const int W = frame.camera.width, H = frame.camera.height;
+  const std::vector<Splat>& splats = frame.data_->splats;
+  const std::vector<uint32_t>& tile_start = frame.data_->tile_start;
+  const std::vector<uint32_t>& tile_list = frame.data_->tile_list;
+  RenderOutput out;
+  out.stats = frame.stats;
+  auto t0 = Clock::now();
+  // 3. Rasterise tiles in parallel (only the masked ones, when a tile mask is given).
   const bool want_value = values != nullptr;
+  const float* vals = want_value ? values->data() : nullptr;
   if (s.color) out.color = Image(W, H, 3);
   out.alpha = Image(W, H, 1);
   if (s.depth) out.depth = Image(W, H, 1);
@@ -310,14 +345,21 @@ RenderOutput render(const GaussianScene& scene, const Camera& camera, const Rend
   std::vector<TileBuffers> buffers(workers);
   parallel_for(tiles, workers, [&](int w, size_t t) {
     const int tx = int(t % grid_x), ty = int(t / grid_x);
+    if (tile_mask && !(*tile_mask)[t]) {
+      if (s.color)
+        for (int y = ty * kTileSize; y < std::min(H, (ty + 1) * kTileSize); ++y)
+          for (int x = tx * kTileSize; x < std::min(W, (tx + 1) * kTileSize); ++x)
+            for (int c = 0; c < 3; ++c) out.color.at(x, y, c) = s.background[c];
+      return;
+    }
     TileBuffers& b = buffers[w];
     const uint32_t* list = tile_list.data() + tile_start[t];
     const size_t count = tile_start[t + 1] - tile_start[t];
     if (visitor)
-      raster_tile<true>(tx, ty, splats.data(), list, count, W, H, s, want_value, visitor, w, b, evaluated[w],
+      raster_tile<true>(tx, ty, splats.data(), list, count, W, H, s, vals, visitor, w, b, evaluated[w],
                         contributed[w]);
     else
-      raster_tile<false>(tx, ty, splats.data(), list, count, W, H, s, want_value, nullptr, w, b, evaluated[w],
+      raster_tile<false>(tx, ty, splats.data(), list, count, W, H, s, vals, nullptr, w, b, evaluated[w],
                          contributed[w]);
     const int x_begin = tx * kTileSize, y_begin = ty * kTileSize;
     const int x_end = std::min(W, x_begin + kTileSize), y_end = std::min(H, y_begin + kTileSize);
@@ -339,6 +381,12 @@ RenderOutput render(const GaussianScene& scene, const Camera& camera, const Rend
   }
   out.stats.ms_raster = ms_since(t0);
   return out;
+}
+
+RenderOutput render(const GaussianScene& scene, const Camera& camera, const RenderSettings& s,
+                    const std::vector<float>* values, ContributionVisitor* visitor) {
+  if (values && values->size() != scene.size()) throw Error("render: per-Gaussian values do not match the scene size");
+  return rasterize(prepare_frame(scene, camera, s), s, values, visitor);
 }
 
 Image render_selection(const GaussianScene& scene, const Camera& camera, const std::vector<float>& selection,

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/camera.h"
@@ -54,6 +55,37 @@ struct RenderOutput {
   Image value;  // 1 channel: sum(w v) of per-Gaussian values, when given
   RenderStats stats;
 };
+
+// A camera's projected, depth-sorted and tile-binned Gaussians: everything of a render
+// that does not depend on per-Gaussian values, so a view can be rasterised many times
+// (selection masks, votes) for the cost of the tile pass alone.
+class PreparedFrame {
+ public:
+  PreparedFrame();
+  ~PreparedFrame();
+  PreparedFrame(PreparedFrame&&) noexcept;
+  PreparedFrame& operator=(PreparedFrame&&) noexcept;
+
+  Camera camera;
+  size_t gaussians = 0;  // size of the scene it was prepared from
+  int grid_x = 0, grid_y = 0;  // tiles
+  RenderStats stats;           // preprocessing and sorting figures
+
+ private:
+  struct Data;
+  std::unique_ptr<Data> data_;
+  friend PreparedFrame prepare_frame(const GaussianScene&, const Camera&, const RenderSettings&);
+  friend RenderOutput rasterize(const PreparedFrame&, const RenderSettings&, const std::vector<float>*,
+                                ContributionVisitor*, const std::vector<uint8_t>*);
+};
+
+// Projects, sorts and bins (uses settings.near_plane, blur, sh_degree, color, threads).
+PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, const RenderSettings& settings = {});
+// Blends a prepared frame. `tile_mask` (optional, grid_x * grid_y flags) limits the work
+// to the flagged tiles; other tiles come out empty (background, alpha 0).
+RenderOutput rasterize(const PreparedFrame& frame, const RenderSettings& settings = {},
+                       const std::vector<float>* values = nullptr, ContributionVisitor* visitor = nullptr,
+                       const std::vector<uint8_t>* tile_mask = nullptr);
 
 // Renders `scene` from `camera`. `values` (optional, one float per Gaussian) adds the
 // `value` image: with 1 for selected Gaussians and 0 otherwise it is the selection's

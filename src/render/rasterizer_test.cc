@@ -225,3 +225,29 @@ TEST(Rasterizer, CullsBehindTheCameraAndKeepsBackground) {
 
 }  // namespace
 }  // namespace isegman
+
+namespace isegman {
+namespace {
+
+TEST(Rasterizer, PreparedFrameReusedWithTileMaskMatchesFullRender) {
+  GaussianScene g = cloud(3000, 2, 9);
+  Camera cam = Camera::look_at({0, -3, 0.5}, {0, 0, 0}, {0, 0, 1}, 100, 70, 55);
+  PreparedFrame frame = prepare_frame(g, cam);
+  std::vector<float> values(g.size());
+  for (size_t i = 0; i < values.size(); ++i) values[i] = float(i % 3) * 0.5f;
+  RenderOutput full = render(g, cam, {}, &values);
+  std::vector<uint8_t> tiles(size_t(frame.grid_x) * frame.grid_y, 0);
+  tiles[1] = tiles[frame.grid_x + 2] = 1;
+  RenderOutput part = rasterize(frame, {}, &values, nullptr, &tiles);
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      const bool on = tiles[size_t(y / kTileSize) * frame.grid_x + x / kTileSize];
+      ASSERT_EQ(part.value.at(x, y), on ? full.value.at(x, y) : 0.f);
+      ASSERT_EQ(part.alpha.at(x, y), on ? full.alpha.at(x, y) : 0.f);
+    }
+  // The same frame rasterised again gives the same image.
+  EXPECT_EQ(rasterize(frame).color.data, full.color.data);
+}
+
+}  // namespace
+}  // namespace isegman
