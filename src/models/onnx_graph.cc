@@ -1169,6 +1169,57 @@ void OnnxGraph::Impl::fuse() {
     steps[m2] = Step{&fused_nodes.back(), &gelu, {x}, {steps[m2].out[0]}, {}};
     dead[d] = dead[e] = dead[a] = dead[m1] = 1;
   }
+  // LayerNorm over the last axis, spelled out: m = mean(x); d = x - m; v = mean(d^2);
+  // y = d / sqrt(v + eps) * gamma + beta.
+  const OpFn& layer_norm = registry().at("LayerNormalization");
+  auto last_axis_mean = [&](int i) {
+    return op(i) == "ReduceMean" && steps[i].in.size() == 1 && steps[i].node->get_ints("axes", {}) == std::vector<int64_t>{-1} &&
+           steps[i].node->get_int("keepdims", 1) == 1;
+  };
+  for (size_t r1 = 0; r1 < steps.size(); ++r1) {
+    if (dead[r1] || !last_axis_mean(int(r1))) continue;
+    int x = steps[r1].in[0];
+    int sub = single(steps[r1].out[0]);
+    if (sub < 0 || op(sub) != "Sub" || steps[sub].in[0] != x || steps[sub].in[1] != steps[r1].out[0]) continue;
+    int d = steps[sub].out[0];
+    if (is_output[d] || consumers[d].size() != 2) continue;
+    int pw = consumers[d][0], dv = consumers[d][1];
+    if (op(pw) != "Pow") std::swap(pw, dv);
+    if (op(pw) != "Pow" || op(dv) != "Div" || steps[pw].in[0] != d || !const_scalar(steps[pw].in[1], 2.0, 1e-9) ||
+        steps[dv].in[0] != d)
+      continue;
+    int r2 = single(steps[pw].out[0]);
+    if (r2 < 0 || !last_axis_mean(r2)) continue;
+    int add = single(steps[r2].out[0]);
+    if (add < 0 || op(add) != "Add") continue;
+    int eps_slot = other(add, steps[r2].out[0]);
+    if (eps_slot < 0 || !constants[eps_slot].defined() || constants[eps_slot].numel() != 1) continue;
+    int sq = single(steps[add].out[0]);
+    if (sq < 0 || op(sq) != "Sqrt" || single(steps[sq].out[0]) != dv || steps[dv].in[1] != steps[sq].out[0]) continue;
+    int mul = single(steps[dv].out[0]);
+    if (mul < 0 || op(mul) != "Mul") continue;
+    int gamma = other(mul, steps[dv].out[0]);
+    if (gamma < 0 || !constants[gamma].defined() || constants[gamma].dim() != 1) continue;
+    int badd = single(steps[mul].out[0]);
+    int beta = badd >= 0 && op(badd) == "Add" ? other(badd, steps[mul].out[0]) : -1;
+    if (beta < 0 || !constants[beta].defined() || constants[beta].dim() != 1 || constants[beta].size(0) != constants[gamma].size(0))
+      continue;
+    Node n;
+    n.name = steps[r1].node->name + "+layernorm";
+    n.op_type = "LayerNormalization";
+    Attribute axis, eps;
+    axis.kind = Attribute::Kind::Int;
+    axis.i = -1;
+    eps.kind = Attribute::Kind::Float;
+    eps.f = float(constants[eps_slot].to(at::kDouble).reshape({-1})[0].item<double>());
+    n.attrs["axis"] = axis;
+    n.attrs["epsilon"] = eps;
+    n.inputs = {steps[r1].node->inputs[0], "gamma", "beta"};
+    n.outputs = {steps[badd].node->outputs[0]};
+    fused_nodes.push_back(n);
+    steps[badd] = Step{&fused_nodes.back(), &layer_norm, {x, gamma, beta}, {steps[badd].out[0]}, {}};
+    dead[r1] = dead[sub] = dead[pw] = dead[dv] = dead[r2] = dead[add] = dead[sq] = dead[mul] = 1;
+  }
   for (size_t i = 0; i < steps.size(); ++i) {
     if (dead[i] || op(int(i)) != "MatMul") continue;
     int w = steps[i].in[1];
