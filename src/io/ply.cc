@@ -305,8 +305,15 @@ GaussianScene parse_ply(const uint8_t* data, size_t size, const std::string& src
   const uint8_t* p = data + pos;
   const uint8_t* end = data + size;
   if (binary) {
-    // Skip elements stored before the vertices.
+    // Skip elements stored before the vertices (a count the file cannot hold is refused
+    // before walking it, and elements without properties take no bytes at all).
     for (size_t e = 0; e < vi; ++e) {
+      if (elements[e].props.empty()) continue;
+      size_t min_record = 0;
+      for (const auto& q : elements[e].props) min_record += q.is_list ? q.count_size : q.size;
+      if (elements[e].count > uint64_t(end - p) / min_record)
+        throw Error(src, "truncated: element '" + elements[e].name + "' declares " + std::to_string(elements[e].count) +
+                             " rows, more than the file holds");
       for (uint64_t r = 0; r < elements[e].count; ++r)
         for (const auto& q : elements[e].props) {
           if (q.is_list) {
@@ -352,8 +359,12 @@ GaussianScene parse_ply(const uint8_t* data, size_t size, const std::string& src
     }
   } else {
     AsciiTokens tok(p, end, src);
-    // Skip elements stored before the vertices.
-    for (size_t e = 0; e < vi; ++e)
+    // Skip elements stored before the vertices (each ASCII value takes at least 2 bytes).
+    for (size_t e = 0; e < vi; ++e) {
+      if (elements[e].props.empty()) continue;
+      if (elements[e].count > uint64_t(end - p) / (2 * elements[e].props.size()))
+        throw Error(src, "truncated: element '" + elements[e].name + "' declares " + std::to_string(elements[e].count) +
+                             " rows, more than the file holds");
       for (uint64_t r = 0; r < elements[e].count; ++r)
         for (const auto& q : elements[e].props) {
           if (q.is_list) {
@@ -364,6 +375,7 @@ GaussianScene parse_ply(const uint8_t* data, size_t size, const std::string& src
             tok.next(elements[e].name.c_str());
           }
         }
+    }
     for (size_t i = 0; i < n; ++i)
       for (size_t k = 0; k < vert.props.size(); ++k) {
         const Property& q = vert.props[k];

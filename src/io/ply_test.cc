@@ -166,6 +166,22 @@ TEST(Ply, ErrorsNameTheFileAndTheProblem) {
   EXPECT_NE(error_of(dup).find("duplicate property 'x'"), std::string::npos);
 }
 
+TEST(Ply, HugeElementBeforeVerticesIsRefusedNotWalked) {
+  // Fuzzer finding: 10^11 rows of an element before the vertices were walked one by one.
+  for (const char* fmt : {"ascii", "binary_little_endian"}) {
+    std::string text = std::string("ply\nformat ") + fmt + " 1.0\nelement junk 99999999999\nproperty float a\n" +
+                       "element vertex 1\n" + minimal_props() + "end_header\n" + std::string(56, '0');
+    EXPECT_NE(error_of(text).find("element 'junk' declares"), std::string::npos) << fmt;
+    std::string empty = std::string("ply\nformat ") + fmt + " 1.0\nelement junk 99999999999\nelement vertex 1\n" +
+                        minimal_props() + "end_header\n" +
+                        (std::string(fmt) == "ascii" ? std::string("0 0 0 0 0 0 0 0 0 0 1 0 0 0\n") : [] {
+                          float rec[14] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0};  // rot_0 = 1
+                          return std::string(reinterpret_cast<const char*>(rec), sizeof rec);
+                        }());
+    EXPECT_EQ(error_of(empty), "") << fmt;  // property-less rows take no bytes: fine
+  }
+}
+
 TEST(Ply, WriteRefusesEmptyAndNonFiniteScenesAndLeavesNoTemp) {
   fs::path dir = fs::temp_directory_path() / ("isegman_ply_" + std::to_string(::getpid()));
   fs::create_directories(dir);
