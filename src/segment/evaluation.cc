@@ -1,0 +1,131 @@
+#include "segment/evaluation.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+#include "io/scene_loader.h"
+#include "render/rasterizer.h"
+
+namespace fs = std::filesystem;
+
+namespace isegman::segment {
+
+EvalTask read_task(const std::string& dir) {
+  EvalTask t;
+  t.dir = dir;
+  t.name = fs::path(dir).filename().string();
+  if (t.name.empty()) t.name = fs::path(dir).parent_path().filename().string();
+  t.scene_dir = (fs::path(dir) / "scene").string();
+  const std::string prompts = (fs::path(dir) / "prompts.json").string();
+  std::vector<uint8_t> bytes = read_file_bytes(prompts);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(bytes.begin(), bytes.end());
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(prompts, std::string("invalid JSON: ") + e.what());
+  }
+  if (!j.is_object() || !j.contains("view") || !j["view"].is_string())
+    throw Error(prompts, "needs a \"view\" string (the img_name of the clicked camera)");
+  t.view = j["view"].get<std::string>();
+  for (const char* key : {"positive", "negative"}) {
+    if (!j.contains(key)) continue;
+    if (!j[key].is_array()) throw Error(prompts, std::string("\"") + key + "\" must be a list of [x, y]");
+    for (const auto& p : j[key]) {
+      if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+        throw Error(prompts, std::string("\"") + key + "\" must be a list of [x, y] pairs");
+      t.clicks.push_back({p[0].get<double>(), p[1].get<double>(), std::string(key) == "positive" ? 1 : 0});
+    }
+  }
+  // Positive clicks first: the first round must select something.
+  std::stable_sort(t.clicks.begin(), t.clicks.end(), [](const PromptClick& a, const PromptClick& b) {
+    return a.label > b.label;
+  });
+  if (t.clicks.empty() || t.clicks.front().label != 1) throw Error(prompts, "needs at least one positive click");
+  const fs::path masks = fs::path(dir) / "masks";
+  std::error_code ec;
+  if (!fs::is_directory(masks, ec)) throw Error(masks.string(), "no masks/ folder with ground truth");
+  for (const auto& e : fs::directory_iterator(masks)) {
+    if (!e.is_regular_file()) continue;
+    const std::string ext = e.path().extension().string();
+    if (ext != ".png" && ext != ".jpg" && ext != ".jpeg") continue;
+    t.masks.emplace_back(e.path().stem().string(), e.path().string());
+  }
+  std::sort(t.masks.begin(), t.masks.end());
+  if (t.masks.empty()) throw Error(masks.string(), "contains no mask images");
+  return t;
+}
+
+std::vector<EvalTask> find_tasks(const std::string& path) {
+  std::error_code ec;
+  if (fs::exists(fs::path(path) / "prompts.json", ec)) return {read_task(path)};
+  if (!fs::is_directory(path, ec)) throw Error(path, "not a task directory or a folder of task directories");
+  std::vector<std::string> dirs;
+  for (const auto& e : fs::directory_iterator(path))
+    if (e.is_directory() && fs::exists(e.path() / "prompts.json")) dirs.push_back(e.path().string());
+  std::sort(dirs.begin(), dirs.end());
+  if (dirs.empty()) throw Error(path, "holds no task directories (each needs prompts.json, scene/ and masks/)");
+  std::vector<EvalTask> tasks;
+  for (const auto& d : dirs) tasks.push_back(read_task(d));
+  return tasks;
+}
+
+MaskScore score_mask(const Image& pred, const Image& truth) {
+  if (pred.width != truth.width || pred.height != truth.height) throw Error("score_mask: sizes differ");
+  size_t inter = 0, uni = 0, correct = 0;
+  const size_t n = size_t(pred.width) * pred.height;
+  for (size_t i = 0; i < n; ++i) {
+    const bool p = pred.data[i * pred.channels] > 0.5f;
+    bool t = false;
+    for (int c = 0; c < truth.channels; ++c) t |= truth.data[i * truth.channels + c] > 0.f;
+    inter += p && t;
+    uni += p || t;
+    correct += p == t;
+  }
+  MaskScore s;
+  s.iou = uni ? double(inter) / double(uni) : 1.0;
+  s.accuracy = double(correct) / double(n);
+  return s;
+}
+
+Image selection_mask(const GaussianScene& scene, const Camera& camera, const std::vector<bool>& selection, int width,
+                     int height, int threads) {
+  const Camera c = (width == camera.width && height == camera.height) ? camera : camera.resized(width, height);
+  RenderSettings s;
+  s.threads = threads;
+  Image m = render_selection(scene, c, selection, s);
+  for (float& v : m.data) v = v > 0.5f ? 1.f : 0.f;
+  return m;
+}
+
+TaskResult evaluate_task(const EvalTask& task, std::shared_ptr<const models::SamModel> sam,
+                         const SessionOptions& so, const ViewOptions& vo, const std::string& views_spec,
+                         const Progress& progress) {
+  SceneBundle b = load_scene(task.scene_dir);
+  const Camera* cam = find_camera(b.cameras, task.view);
+  if (!cam) throw Error(task.dir + "/prompts.json", "view '" + task.view + "' is not a camera of the scene");
+  TaskResult r;
+  r.name = task.name;
+  auto session = segment_from_prompts(b, int(cam - b.cameras.data()), task.clicks, sam, so, vo, views_spec,
+                                      &r.timings, progress);
+  const std::vector<bool>& sel = session->selection();
+  r.selected = size_t(std::count(sel.begin(), sel.end(), true));
+  for (const auto& [view, path] : task.masks) {
+    const Camera* c = find_camera(b.cameras, view);
+    if (!c) throw Error(path, "mask for '" + view + "', which is not a camera of the scene");
+    Image truth = read_image(path);
+    MaskScore s = score_mask(selection_mask(b.gaussians, *c, sel, truth.width, truth.height, so.threads), truth);
+    s.view = view;
+    r.masks.push_back(s);
+    r.iou += s.iou;
+    r.accuracy += s.accuracy;
+  }
+  r.iou /= double(r.masks.size());
+  r.accuracy /= double(r.masks.size());
+  return r;
+}
+
+}  // namespace isegman::segment

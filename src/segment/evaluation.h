@@ -1,0 +1,50 @@
+// Scoring segmentations against ground-truth masks, in a generic task layout:
+//   <task>/scene/               a scene directory (PLY + cameras.json)
+//   <task>/prompts.json         {"view": "<img_name>", "positive": [[x, y], ...], "negative": [...]}
+//   <task>/masks/<img_name>.png ground truth (non-zero = object), any resolution
+// The selection is made from the prompts alone; masks are read only to score it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "segment/pipeline.h"
+
+namespace isegman::segment {
+
+struct EvalTask {
+  std::string name, dir, scene_dir, view;
+  std::vector<PromptClick> clicks;
+  std::vector<std::pair<std::string, std::string>> masks;  // (camera name, mask file)
+};
+
+// A task directory, or a folder whose sub-directories are tasks (sorted by name).
+std::vector<EvalTask> find_tasks(const std::string& path);
+EvalTask read_task(const std::string& dir);
+
+struct MaskScore {
+  std::string view;
+  double iou = 0, accuracy = 0;
+};
+
+struct TaskResult {
+  std::string name;
+  std::vector<MaskScore> masks;
+  double iou = 0, accuracy = 0;  // means over the task's masks
+  size_t selected = 0;
+  PipelineTimings timings;
+};
+
+// IoU and pixel accuracy of a predicted binary mask (> 0.5) against ground truth (> 0).
+MaskScore score_mask(const Image& predicted, const Image& truth);
+
+// The selection's mask in a camera at the given resolution: coverage > 0.5.
+Image selection_mask(const GaussianScene& scene, const Camera& camera, const std::vector<bool>& selection, int width,
+                     int height, int threads = 0);
+
+TaskResult evaluate_task(const EvalTask& task, std::shared_ptr<const models::SamModel> sam,
+                         const SessionOptions& session_options, const ViewOptions& view_options,
+                         const std::string& views_spec, const Progress& progress = nullptr);
+
+}  // namespace isegman::segment

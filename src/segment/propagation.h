@@ -1,0 +1,46 @@
+// EIP, Epipolar-guided Interaction Propagation: a click in one view becomes a click in
+// every other view where its target can be seen.
+//   epipolar: the paper — walk the feature-grid cells along the click's epipolar line and
+//             take the cell whose feature is most similar to the clicked one;
+//   depth:    reproject the 3D point at the rendered expected depth;
+//   hybrid:   the epipolar search restricted to a window around the depth reprojection.
+// With depth available, a click whose 3D point is hidden behind the rendered surface of
+// a view, or projects outside it, is not sent there.
+#pragma once
+
+#include <string>
+
+#include "segment/views.h"
+
+namespace isegman::segment {
+
+enum class PropagationMode { Epipolar, Depth, Hybrid };
+PropagationMode parse_mode(const std::string& name);
+const char* mode_name(PropagationMode mode);
+
+struct ViewClick {
+  double u = 0, v = 0;  // continuous pixel coordinates in the view
+  int label = 1;        // 1 positive, 0 negative
+};
+
+struct PropagationOptions {
+  PropagationMode mode = PropagationMode::Hybrid;
+  double window_cells = 2.0;     // hybrid: search radius around the reprojection, in grid cells
+  double occlusion_tolerance = 0.05;  // relative depth slack before a point counts as hidden
+  double min_alpha = 0.5;        // a pixel with less accumulated alpha has no surface
+};
+
+struct Propagated {
+  bool sent = false;
+  ViewClick click;
+  float affinity = 0;   // feature similarity of the match (epipolar / hybrid)
+  std::string reason;   // why it was not sent
+};
+
+// 3D point under a view's pixel at the rendered expected depth; false without surface.
+bool surface_point(const SegmentView& view, double u, double v, double min_alpha, Vec3& point);
+
+Propagated propagate(const SegmentView& from, const ViewClick& click, const SegmentView& to,
+                     const PropagationOptions& options, double scene_extent);
+
+}  // namespace isegman::segment

@@ -1,0 +1,94 @@
+// The interactive segmentation session: clicks in any view are propagated (EIP) to every
+// view, segmented by SAM, inspected (IIM) and voted into a 3D selection (VGV). Each click
+// is a round that refines the selection; undo restores the state before a click exactly.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "models/sam.h"
+#include "segment/propagation.h"
+#include "segment/views.h"
+#include "segment/votes.h"
+
+namespace isegman::segment {
+
+struct SessionOptions {
+  PropagationOptions propagation;
+  double tau = 0.8;                // select P/A > tau
+  double min_total_weight = 0.05;  // ignore Gaussians with less total blending weight
+  bool inspection = true;          // IIM on/off
+  double min_overlap = 0.01;       // IIM: overlap pixels needed, as a share of the SAM mask
+  bool reuse_previous_mask = true; // feed each view's previous low-res mask back to SAM
+  int threads = 0;
+};
+
+struct UserClick {
+  int view = 0;
+  ViewClick click;
+};
+
+enum class ViewStatus { Accepted, NoClicks, EmptyMask, NoOverlap, Skipped };
+const char* status_name(ViewStatus s);
+
+struct ViewState {
+  std::vector<ViewClick> clicks;       // the clicks SAM got in this view
+  std::vector<std::string> not_sent;   // why other clicks did not reach this view
+  std::vector<uint8_t> mask;           // SAM mask at the view's working resolution (0/1)
+  int mask_pixels = 0;
+  float sam_score = 0;
+  std::vector<float> low_res;          // SAM low-res logits, for the next round
+  ViewStatus status = ViewStatus::NoClicks;
+  double overlap = 0;                  // IIM: share of the mask covered by the selection
+  ViewVotes positive;                  // P-votes of the mask (when accepted)
+};
+
+struct RoundReport {
+  double ms_propagation = 0, ms_sam = 0, ms_voting = 0;
+  int views_segmented = 0, accepted = 0, dropped = 0;
+  size_t selected = 0;
+};
+
+class Session {
+ public:
+  Session(const GaussianScene& scene, std::vector<SegmentView> views, std::shared_ptr<const models::SamModel> sam,
+          SessionOptions options);
+
+  // Adds a view (e.g. a free camera) and returns its index.
+  int add_view(SegmentView view);
+  // A click in view `view` at continuous pixel coordinates of that view's working
+  // resolution; label 1 positive, 0 negative. Runs a full round.
+  RoundReport click(int view, const ViewClick& click);
+  // Removes the last click; false when there is none.
+  bool undo();
+
+  const std::vector<bool>& selection() const { return state_.selection; }
+  std::vector<float> scores() const { return state_.votes.ratios(); }
+  const VoteAccumulator& votes() const { return state_.votes; }
+  const std::vector<UserClick>& clicks() const { return state_.clicks; }
+  const std::vector<ViewState>& view_states() const { return state_.views; }
+  const std::vector<SegmentView>& views() const { return views_; }
+  const SessionOptions& options() const { return options_; }
+  // Coverage of the current selection in a view (1 channel, working resolution).
+  Image selection_coverage(int view) const;
+
+ private:
+  struct State {
+    std::vector<UserClick> clicks;
+    std::vector<ViewState> views;
+    VoteAccumulator votes;
+    std::vector<bool> selection;
+  };
+  RoundReport run_round(State& next, const State& previous);
+
+  const GaussianScene& scene_;
+  std::vector<SegmentView> views_;
+  std::shared_ptr<const models::SamModel> sam_;
+  SessionOptions options_;
+  double scene_extent_ = 1;
+  State state_;
+  std::vector<State> history_;
+};
+
+}  // namespace isegman::segment

@@ -1,0 +1,95 @@
+#include "segment/views.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "io/image_io.h"
+
+namespace isegman::segment {
+
+std::vector<int> sample_views(const std::vector<Camera>& cameras, const std::string& spec, int must_include) {
+  const int n = int(cameras.size());
+  if (n == 0) throw Error("the scene has no cameras to segment in");
+  std::set<int> chosen;
+  if (spec.empty() || spec == "all" || spec == "100%") {
+    for (int i = 0; i < n; ++i) chosen.insert(i);
+  } else if (spec.back() == '%') {
+    char* end = nullptr;
+    const double pct = std::strtod(spec.c_str(), &end);
+    if (end != spec.c_str() + spec.size() - 1 || !(pct > 0 && pct <= 100))
+      throw Error("--views: '" + spec + "' is not a percentage in (0, 100]");
+    const int k = std::max(1, int(std::lround(n * pct / 100.0)));
+    for (int i = 0; i < k; ++i) chosen.insert(int(std::floor((i + 0.5) * n / k)));
+  } else {
+    std::stringstream ss(spec);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+      const Camera* c = find_camera(cameras, item);
+      if (!c) throw Error("--views: no camera with id or name '" + item + "'");
+      chosen.insert(int(c - cameras.data()));
+    }
+  }
+  if (must_include >= 0 && must_include < n) chosen.insert(must_include);
+  return std::vector<int>(chosen.begin(), chosen.end());
+}
+
+SegmentView build_view(const GaussianScene& scene, const Camera& camera, int camera_index,
+                       const models::SamModel& sam, const ViewOptions& opt, models::SamTimings* timings) {
+  SegmentView v;
+  v.name = camera.name;
+  v.camera_index = camera_index;
+  v.camera = camera;
+  const int longest = std::max(camera.width, camera.height);
+  if (longest > opt.max_side) {
+    const double s = double(opt.max_side) / longest;
+    v.camera = camera.resized(std::max(1, int(std::lround(camera.width * s))),
+                              std::max(1, int(std::lround(camera.height * s))));
+  }
+  RenderSettings rs;
+  rs.threads = opt.threads;
+  for (int c = 0; c < 3; ++c) rs.background[c] = opt.background[c];
+  v.frame = prepare_frame(scene, v.camera, rs);
+  RenderOutput r = rasterize(v.frame, rs);
+  v.depth = std::move(r.depth);
+  v.alpha = std::move(r.alpha);
+  if (opt.use_photos) {
+    if (camera.image_path.empty()) throw Error("camera '" + camera.name + "' has no source photo (use renders)");
+    Image photo = read_image(camera.image_path, 3);
+    v.rgb = (photo.width == v.camera.width && photo.height == v.camera.height)
+                ? std::move(photo)
+                : resize_image(photo, v.camera.width, v.camera.height);
+  } else {
+    v.rgb = std::move(r.color);
+    for (float& x : v.rgb.data) x = std::clamp(x, 0.f, 1.f);
+  }
+  v.all_votes = total_votes(v.frame, opt.threads);
+  v.embedding = sam.encode_cached(v.rgb, opt.cache_dir, timings);
+  return v;
+}
+
+std::vector<SegmentView> build_views(const SceneBundle& b, const std::vector<int>& indices,
+                                     const models::SamModel& sam, const ViewOptions& opt, const Progress& progress) {
+  std::vector<SegmentView> views;
+  views.reserve(indices.size());
+  for (size_t k = 0; k < indices.size(); ++k) {
+    const Camera& cam = b.cameras.at(size_t(indices[k]));
+    auto t0 = std::chrono::steady_clock::now();
+    models::SamTimings t;
+    views.push_back(build_view(b.gaussians, cam, indices[k], sam, opt, &t));
+    if (progress) {
+      char line[256];
+      std::snprintf(line, sizeof line, "view %zu/%zu %s: %.0f ms (%s)", k + 1, indices.size(), cam.name.c_str(),
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(),
+                    t.from_cache ? "embedding from cache" : "embedding computed");
+      progress(line);
+    }
+  }
+  return views;
+}
+
+}  // namespace isegman::segment

@@ -1,0 +1,54 @@
+// The views a segmentation works in: the scene's cameras (rendered from the Gaussians,
+// or their source photos), a sampled subset of them, and free cameras added on the fly.
+// Each view keeps what every interaction reuses: its image, expected depth and alpha, its
+// prepared frame (for votes and selection masks), all-pixel votes and its SAM embedding.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "core/scene.h"
+#include "models/sam.h"
+#include "render/rasterizer.h"
+#include "segment/votes.h"
+
+namespace isegman::segment {
+
+struct SegmentView {
+  std::string name;
+  int camera_index = -1;  // index in the scene's camera list; -1 for a free camera
+  Camera camera;          // at the working resolution
+  Image rgb;              // what SAM segments
+  Image depth, alpha;     // rendered expected depth and accumulated alpha
+  PreparedFrame frame;
+  ViewVotes all_votes;    // A-votes of every pixel (mask independent)
+  models::SamEmbedding embedding;
+};
+
+struct ViewOptions {
+  bool use_photos = false;   // SAM sees the source photos instead of renders
+  int max_side = 1024;       // working resolution cap (SAM works at 1024 anyway)
+  std::string cache_dir;     // embedding cache ("" = none)
+  int threads = 0;
+  float background[3] = {0.f, 0.f, 0.f};
+};
+
+// Parses a view sampling spec against `count` cameras: "all", "25%" (spread uniformly
+// along the list, always including `must_include`), or a comma list of ids or names.
+std::vector<int> sample_views(const std::vector<Camera>& cameras, const std::string& spec, int must_include = -1);
+
+using Progress = std::function<void(const std::string& line)>;
+
+// Renders and encodes one view (the embedding comes from the cache when present).
+SegmentView build_view(const GaussianScene& scene, const Camera& camera, int camera_index,
+                       const models::SamModel& sam, const ViewOptions& options, models::SamTimings* timings = nullptr);
+
+// Builds the listed cameras' views, reporting progress per view.
+std::vector<SegmentView> build_views(const SceneBundle& bundle, const std::vector<int>& camera_indices,
+                                     const models::SamModel& sam, const ViewOptions& options,
+                                     const Progress& progress = nullptr);
+
+}  // namespace isegman::segment

@@ -1,0 +1,52 @@
+// Visibility-based Gaussian voting (VGV). Pixels vote for Gaussians with their
+// alpha-blending weight w_ij = alpha_j prod_{l<j} (1 - alpha_l): positive votes
+// P_j = sum over masked pixels, all votes A_j = sum over every pixel of the accepted views.
+// Sums are kept in 2^-24 fixed point, so they are exact, independent of thread count and
+// order, and a view's contribution can be removed again bit-exactly.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/image.h"
+#include "render/rasterizer.h"
+
+namespace isegman::segment {
+
+constexpr double kVoteScale = 16777216.0;  // 2^24 fixed-point units per unit weight
+
+// One view's sparse contribution: Gaussian indices with their summed weights.
+struct ViewVotes {
+  std::vector<uint32_t> index;
+  std::vector<int64_t> weight;  // fixed point
+};
+
+// All votes of a view (mask independent): one full pass over the prepared frame.
+ViewVotes total_votes(const PreparedFrame& frame, int threads = 0);
+// Votes from the pixels where mask > 0.5 (mask at the frame's resolution); only the tiles
+// the mask touches are rasterised.
+ViewVotes masked_votes(const PreparedFrame& frame, const Image& mask, int threads = 0);
+
+class VoteAccumulator {
+ public:
+  explicit VoteAccumulator(size_t gaussians = 0) : positive_(gaussians, 0), total_(gaussians, 0) {}
+  size_t size() const { return total_.size(); }
+  // sign = +1 adds a view, -1 removes it again.
+  void add(const ViewVotes& positive, const ViewVotes& total, int sign = 1);
+  // Gaussians whose positive share P/A exceeds tau and whose total weight A is at least
+  // min_total (in pixel-weight units).
+  std::vector<bool> select(double tau, double min_total) const;
+  // P/A per Gaussian (0 where A is 0).
+  std::vector<float> ratios() const;
+  const std::vector<int64_t>& positive() const { return positive_; }
+  const std::vector<int64_t>& total() const { return total_; }
+  bool operator==(const VoteAccumulator& o) const { return positive_ == o.positive_ && total_ == o.total_; }
+
+ private:
+  std::vector<int64_t> positive_, total_;
+};
+
+// Bounding tiles of mask > 0.5 pixels, as a tile mask for rasterize().
+std::vector<uint8_t> tiles_under_mask(const Image& mask, int grid_x, int grid_y);
+
+}  // namespace isegman::segment
