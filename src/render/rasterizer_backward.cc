@@ -1,0 +1,765 @@
+#include "render/rasterizer_backward.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/sh.h"
+#include "render/radix_sort.h"
+
+namespace isegman {
+namespace {
+
+constexpr float kMinAlpha = 1.f / 255.f;
+constexpr float kMinTransmittance = 1e-4f;
+constexpr int kTilePixels = kTileSize * kTileSize;
+
+// The camera constants of ProjectionCamera (projection.h) in the scalar type.
+template <typename Real>
+struct DiffCamera {
+  Real R[9], t[3];
+  Real fx, fy, cx, cy;
+  Real lim_x_lo, lim_x_hi, lim_y_lo, lim_y_hi;
+  Real center[3];
+  int width, height;
+
+  explicit DiffCamera(const Camera& cam) {
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) R[3 * r + c] = Real(cam.R.m[r][c]);
+      t[r] = Real(cam.t[r]);
+    }
+    fx = Real(cam.fx);
+    fy = Real(cam.fy);
+    cx = Real(cam.cx - 0.5);
+    cy = Real(cam.cy - 0.5);
+    lim_x_lo = -Real((cam.cx + 0.15 * cam.width) / cam.fx);
+    lim_x_hi = Real((cam.width - cam.cx + 0.15 * cam.width) / cam.fx);
+    lim_y_lo = -Real((cam.cy + 0.15 * cam.height) / cam.fy);
+    lim_y_hi = Real((cam.height - cam.cy + 0.15 * cam.height) / cam.fy);
+    const Vec3 c = cam.center();
+    center[0] = Real(c.x);
+    center[1] = Real(c.y);
+    center[2] = Real(c.z);
+    width = cam.width;
+    height = cam.height;
+  }
+};
+
+// ---------------------------------------------------------------------------------------
+// Per-Gaussian maths, forward and backward side by side (gsplat style).
+
+// Rotation matrix (row-major) of the normalised quaternion.
+template <typename Real>
+void quat_to_rotation(const Real* q, Real Rm[9], Real qn[4], Real& norm) {
+  Real w = q[0], x = q[1], y = q[2], z = q[3];
+  norm = std::sqrt(w * w + x * x + y * y + z * z);
+  w /= norm; x /= norm; y /= norm; z /= norm;
+  qn[0] = w; qn[1] = x; qn[2] = y; qn[3] = z;
+  const Real one = 1, two = 2;
+  Rm[0] = one - two * (y * y + z * z); Rm[1] = two * (x * y - w * z); Rm[2] = two * (x * z + w * y);
+  Rm[3] = two * (x * y + w * z); Rm[4] = one - two * (x * x + z * z); Rm[5] = two * (y * z - w * x);
+  Rm[6] = two * (x * z - w * y); Rm[7] = two * (y * z + w * x); Rm[8] = one - two * (x * x + y * y);
+}
+
+// dL/dq (unnormalised) from dL/dR.
+template <typename Real>
+void quat_to_rotation_backward(const Real qn[4], Real norm, const Real G[9], Real dq[4]) {
+  const Real w = qn[0], x = qn[1], y = qn[2], z = qn[3];
+  Real gw = 2 * (-z * G[1] + y * G[2] + z * G[3] - x * G[5] - y * G[6] + x * G[7]);
+  Real gx = 2 * (y * G[1] + z * G[2] + y * G[3] - 2 * x * G[4] - w * G[5] + z * G[6] + w * G[7] - 2 * x * G[8]);
+  Real gy = 2 * (-2 * y * G[0] + x * G[1] + w * G[2] + x * G[3] + z * G[5] - w * G[6] + z * G[7] - 2 * y * G[8]);
+  Real gz = 2 * (-2 * z * G[0] - w * G[1] + x * G[2] + w * G[3] - 2 * z * G[4] + y * G[5] + x * G[6] + y * G[7]);
+  // Through the normalisation qn = q / |q|.
+  const Real d = w * gw + x * gx + y * gy + z * gz;
+  dq[0] = (gw - w * d) / norm;
+  dq[1] = (gx - x * d) / norm;
+  dq[2] = (gy - y * d) / norm;
+  dq[3] = (gz - z * d) / norm;
+}
+
+// SH basis derivatives d b_k / d(x, y, z) for k < (degree+1)^2 (b as in core/sh.h).
+template <typename Real>
+void sh_basis_grad(int degree, Real x, Real y, Real z, Real dx[16], Real dy[16], Real dz[16]) {
+  for (int k = 0; k < 16; ++k) dx[k] = dy[k] = dz[k] = 0;
+  if (degree < 1) return;
+  const Real c1 = Real(kShC1);
+  dy[1] = -c1;
+  dz[2] = c1;
+  dx[3] = -c1;
+  if (degree < 2) return;
+  const Real xx = x * x, yy = y * y, zz = z * z;
+  const Real a0 = Real(kShC2[0]), a1 = Real(kShC2[1]), a2 = Real(kShC2[2]), a3 = Real(kShC2[3]), a4 = Real(kShC2[4]);
+  dx[4] = a0 * y; dy[4] = a0 * x;
+  dy[5] = a1 * z; dz[5] = a1 * y;
+  dx[6] = -2 * a2 * x; dy[6] = -2 * a2 * y; dz[6] = 4 * a2 * z;
+  dx[7] = a3 * z; dz[7] = a3 * x;
+  dx[8] = 2 * a4 * x; dy[8] = -2 * a4 * y;
+  if (degree < 3) return;
+  const Real b0 = Real(kShC3[0]), b1 = Real(kShC3[1]), b2 = Real(kShC3[2]), b3 = Real(kShC3[3]),
+             b4 = Real(kShC3[4]), b5 = Real(kShC3[5]), b6 = Real(kShC3[6]);
+  dx[9] = b0 * 6 * x * y; dy[9] = b0 * (3 * xx - 3 * yy);
+  dx[10] = b1 * y * z; dy[10] = b1 * x * z; dz[10] = b1 * x * y;
+  dx[11] = b2 * (-2 * x * y); dy[11] = b2 * (4 * zz - xx - 3 * yy); dz[11] = b2 * 8 * y * z;
+  dx[12] = b3 * (-6 * x * z); dy[12] = b3 * (-6 * y * z); dz[12] = b3 * (6 * zz - 3 * xx - 3 * yy);
+  dx[13] = b4 * (4 * zz - 3 * xx - yy); dy[13] = b4 * (-2 * x * y); dz[13] = b4 * 8 * x * z;
+  dx[14] = b5 * 2 * x * z; dy[14] = b5 * (-2 * y * z); dz[14] = b5 * (xx - yy);
+  dx[15] = b6 * (3 * xx - 3 * yy); dy[15] = b6 * (-6 * x * y);
+}
+
+// SH basis in the scalar type (core/sh.h's sh_basis, same expressions).
+template <typename Real>
+void sh_basis_t(int degree, Real x, Real y, Real z, Real* b) {
+  b[0] = Real(kShC0);
+  if (degree < 1) return;
+  b[1] = -Real(kShC1) * y;
+  b[2] = Real(kShC1) * z;
+  b[3] = -Real(kShC1) * x;
+  if (degree < 2) return;
+  const Real xx = x * x, yy = y * y, zz = z * z, xy = x * y, yz = y * z, xz = x * z;
+  b[4] = Real(kShC2[0]) * xy;
+  b[5] = Real(kShC2[1]) * yz;
+  b[6] = Real(kShC2[2]) * (Real(2) * zz - xx - yy);
+  b[7] = Real(kShC2[3]) * xz;
+  b[8] = Real(kShC2[4]) * (xx - yy);
+  if (degree < 3) return;
+  b[9] = Real(kShC3[0]) * y * (Real(3) * xx - yy);
+  b[10] = Real(kShC3[1]) * xy * z;
+  b[11] = Real(kShC3[2]) * y * (Real(4) * zz - xx - yy);
+  b[12] = Real(kShC3[3]) * z * (Real(2) * zz - Real(3) * xx - Real(3) * yy);
+  b[13] = Real(kShC3[4]) * x * (Real(4) * zz - xx - yy);
+  b[14] = Real(kShC3[5]) * z * (xx - yy);
+  b[15] = Real(kShC3[6]) * x * (xx - Real(3) * yy);
+}
+
+// Everything the projection computes for one Gaussian (kept for the backward pass).
+template <typename Real>
+struct Projected {
+  Real Rm[9], qn[4], qnorm, s[3], M[9], cov3[6];
+  Real tx0, ty0, tz, txtz, tytz, tx, ty;
+  bool clamp_x, clamp_y;
+  Real T0[3], T1[3];
+  Real a, b, c;  // 2D covariance incl. blur
+  Real conic[3];
+  Real mean_x, mean_y;
+  int radius;
+  Real dir[3], dir_norm;  // unit view direction and the distance it was divided by
+  Real raw_rgb[3];        // before the clamp at 0
+  Real rgb[3];
+  Real opacity;
+};
+
+// projection.h's covariance_3d + project_footprint and the rasteriser's opacity and SH,
+// in the scalar type and in the same order of operations. False when culled.
+template <typename Real>
+bool project_gaussian(const GaussianParams<Real>& P, size_t i, const DiffCamera<Real>& cam, Real near_plane, Real blur,
+                      int degree, Projected<Real>& o) {
+  o.opacity = Real(1) / (Real(1) + std::exp(-P.opacity[i]));
+  if (!(o.opacity >= Real(kMinAlpha))) return false;
+  quat_to_rotation(P.rotations + 4 * i, o.Rm, o.qn, o.qnorm);
+  const Real* ls = P.scales + 3 * i;
+  for (int k = 0; k < 3; ++k) o.s[k] = std::exp(ls[k]);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) o.M[3 * r + c] = o.Rm[3 * r + c] * o.s[c];
+  const Real* M = o.M;
+  o.cov3[0] = M[0] * M[0] + M[1] * M[1] + M[2] * M[2];
+  o.cov3[1] = M[0] * M[3] + M[1] * M[4] + M[2] * M[5];
+  o.cov3[2] = M[0] * M[6] + M[1] * M[7] + M[2] * M[8];
+  o.cov3[3] = M[3] * M[3] + M[4] * M[4] + M[5] * M[5];
+  o.cov3[4] = M[3] * M[6] + M[4] * M[7] + M[5] * M[8];
+  o.cov3[5] = M[6] * M[6] + M[7] * M[7] + M[8] * M[8];
+
+  const Real* p = P.positions + 3 * i;
+  const Real* R = cam.R;
+  o.tx0 = R[0] * p[0] + R[1] * p[1] + R[2] * p[2] + cam.t[0];
+  o.ty0 = R[3] * p[0] + R[4] * p[1] + R[5] * p[2] + cam.t[1];
+  o.tz = R[6] * p[0] + R[7] * p[1] + R[8] * p[2] + cam.t[2];
+  if (o.tz <= near_plane) return false;
+  const Real inv_z = Real(1) / o.tz;
+  const Real ux = o.tx0 * inv_z, uy = o.ty0 * inv_z;
+  o.txtz = std::fmin(std::fmax(ux, cam.lim_x_lo), cam.lim_x_hi);
+  o.tytz = std::fmin(std::fmax(uy, cam.lim_y_lo), cam.lim_y_hi);
+  o.clamp_x = o.txtz != ux;
+  o.clamp_y = o.tytz != uy;
+  o.tx = o.txtz * o.tz;
+  o.ty = o.tytz * o.tz;
+  const Real j00 = cam.fx * inv_z, j02 = -cam.fx * o.tx * inv_z * inv_z;
+  const Real j11 = cam.fy * inv_z, j12 = -cam.fy * o.ty * inv_z * inv_z;
+  for (int k = 0; k < 3; ++k) {
+    o.T0[k] = j00 * R[k] + j02 * R[6 + k];
+    o.T1[k] = j11 * R[3 + k] + j12 * R[6 + k];
+  }
+  const Real S[9] = {o.cov3[0], o.cov3[1], o.cov3[2], o.cov3[1], o.cov3[3], o.cov3[4], o.cov3[2], o.cov3[4], o.cov3[5]};
+  Real ST0[3], ST1[3];
+  for (int r = 0; r < 3; ++r) {
+    ST0[r] = S[3 * r] * o.T0[0] + S[3 * r + 1] * o.T0[1] + S[3 * r + 2] * o.T0[2];
+    ST1[r] = S[3 * r] * o.T1[0] + S[3 * r + 1] * o.T1[1] + S[3 * r + 2] * o.T1[2];
+  }
+  o.a = o.T0[0] * ST0[0] + o.T0[1] * ST0[1] + o.T0[2] * ST0[2] + blur;
+  o.b = o.T0[0] * ST1[0] + o.T0[1] * ST1[1] + o.T0[2] * ST1[2];
+  o.c = o.T1[0] * ST1[0] + o.T1[1] * ST1[1] + o.T1[2] * ST1[2] + blur;
+  const Real det = o.a * o.c - o.b * o.b;
+  if (!(det > Real(0))) return false;
+  const Real inv_det = Real(1) / det;
+  o.conic[0] = o.c * inv_det;
+  o.conic[1] = -o.b * inv_det;
+  o.conic[2] = o.a * inv_det;
+  const Real mid = Real(0.5) * (o.a + o.c);
+  const Real disc = std::sqrt(std::fmax(Real(0.1), mid * mid - det));
+  const Real l1 = mid + disc, l2 = mid - disc;
+  o.radius = int(std::ceil(Real(3) * std::sqrt(std::fmax(l1, l2))));
+  o.mean_x = cam.fx * o.tx0 * inv_z + cam.cx;
+  o.mean_y = cam.fy * o.ty0 * inv_z + cam.cy;
+
+  Real dx = p[0] - cam.center[0], dy = p[1] - cam.center[1], dz = p[2] - cam.center[2];
+  o.dir_norm = std::sqrt(dx * dx + dy * dy + dz * dz);
+  if (o.dir_norm > 0) { dx /= o.dir_norm; dy /= o.dir_norm; dz /= o.dir_norm; }
+  o.dir[0] = dx; o.dir[1] = dy; o.dir[2] = dz;
+  Real basis[16];
+  sh_basis_t(degree, dx, dy, dz, basis);
+  const int K = (degree + 1) * (degree + 1);
+  const Real* coeffs = P.sh + size_t(i) * sh_coeff_count(P.sh_degree) * 3;
+  for (int ch = 0; ch < 3; ++ch) {
+    Real sum = 0;
+    for (int k = 0; k < K; ++k) sum += basis[k] * coeffs[3 * k + ch];
+    sum += Real(0.5);
+    o.raw_rgb[ch] = sum;
+    o.rgb[ch] = sum > Real(0) ? sum : Real(0);
+  }
+  return true;
+}
+
+// Screen-space gradients of one Gaussian, as accumulated by the pixel pass.
+template <typename Real>
+struct ScreenGrad {
+  Real mean[2] = {0, 0};
+  Real conic[3] = {0, 0, 0};
+  Real opacity = 0;
+  Real rgb[3] = {0, 0, 0};
+};
+
+// Chains screen-space gradients back to the Gaussian's parameters (adds to the slot's rows).
+template <typename Real>
+void project_gaussian_backward(const GaussianParams<Real>& P, size_t i, const DiffCamera<Real>& cam, int degree,
+                               const Projected<Real>& o, const ScreenGrad<Real>& g, GaussianGrads<Real>& out,
+                               size_t slot) {
+  const Real* R = cam.R;
+  Real dp[3] = {0, 0, 0};  // dL/d(world position)
+  Real dt[3] = {0, 0, 0};  // dL/d(camera-space position tx0, ty0, tz)
+
+  // Opacity: o = sigmoid(logit).
+  out.opacity[slot] += g.opacity * o.opacity * (Real(1) - o.opacity);
+
+  // Colour: rgb = max(sum_k b_k(dir) c_k + 0.5, 0).
+  {
+    Real basis[16], bx[16], by[16], bz[16];
+    sh_basis_t(degree, o.dir[0], o.dir[1], o.dir[2], basis);
+    sh_basis_grad(degree, o.dir[0], o.dir[1], o.dir[2], bx, by, bz);
+    const int K = (degree + 1) * (degree + 1);
+    const int K_all = sh_coeff_count(P.sh_degree);
+    const Real* coeffs = P.sh + size_t(i) * K_all * 3;
+    Real* dsh = out.sh.data() + slot * size_t(K_all) * 3;
+    Real ddir[3] = {0, 0, 0};
+    for (int ch = 0; ch < 3; ++ch) {
+      const Real gc = o.raw_rgb[ch] > Real(0) ? g.rgb[ch] : Real(0);
+      if (gc == Real(0)) continue;
+      for (int k = 0; k < K; ++k) {
+        dsh[3 * k + ch] += basis[k] * gc;
+        ddir[0] += bx[k] * coeffs[3 * k + ch] * gc;
+        ddir[1] += by[k] * coeffs[3 * k + ch] * gc;
+        ddir[2] += bz[k] * coeffs[3 * k + ch] * gc;
+      }
+    }
+    if (o.dir_norm > 0) {
+      // dir = v / |v|: d dir / dv = (I - dir dir^T) / |v|.
+      const Real d = ddir[0] * o.dir[0] + ddir[1] * o.dir[1] + ddir[2] * o.dir[2];
+      for (int k = 0; k < 3; ++k) dp[k] += (ddir[k] - o.dir[k] * d) / o.dir_norm;
+    }
+  }
+
+  // Mean: mean_x = fx tx0 / tz + cx, mean_y = fy ty0 / tz + cy.
+  const Real inv_z = Real(1) / o.tz;
+  dt[0] += g.mean[0] * cam.fx * inv_z;
+  dt[1] += g.mean[1] * cam.fy * inv_z;
+  dt[2] -= (g.mean[0] * cam.fx * o.tx0 + g.mean[1] * cam.fy * o.ty0) * inv_z * inv_z;
+
+  // Conic = inverse of V = [[a, b], [b, c]]: dL/dV = -Q Gq Q with Gq the symmetric matrix
+  // gradient of Q (its off-diagonal entry appears twice, hence the halves).
+  const Real Q[4] = {o.conic[0], o.conic[1], o.conic[1], o.conic[2]};
+  const Real Gq[4] = {g.conic[0], Real(0.5) * g.conic[1], Real(0.5) * g.conic[1], g.conic[2]};
+  Real QG[4], GV[4];
+  QG[0] = Q[0] * Gq[0] + Q[1] * Gq[2]; QG[1] = Q[0] * Gq[1] + Q[1] * Gq[3];
+  QG[2] = Q[2] * Gq[0] + Q[3] * Gq[2]; QG[3] = Q[2] * Gq[1] + Q[3] * Gq[3];
+  GV[0] = -(QG[0] * Q[0] + QG[1] * Q[2]); GV[1] = -(QG[0] * Q[1] + QG[1] * Q[3]);
+  GV[2] = -(QG[2] * Q[0] + QG[3] * Q[2]); GV[3] = -(QG[2] * Q[1] + QG[3] * Q[3]);
+  // V = T Sigma T^T + blur I: dL/dSigma = T^T GV T, dL/dT = 2 GV T Sigma.
+  const Real* Tm[2] = {o.T0, o.T1};
+  Real GS[9];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      Real s = 0;
+      for (int u = 0; u < 2; ++u)
+        for (int v = 0; v < 2; ++v) s += Tm[u][r] * GV[2 * u + v] * Tm[v][c];
+      GS[3 * r + c] = s;
+    }
+  const Real S[9] = {o.cov3[0], o.cov3[1], o.cov3[2], o.cov3[1], o.cov3[3], o.cov3[4], o.cov3[2], o.cov3[4], o.cov3[5]};
+  Real TS[2][3];
+  for (int u = 0; u < 2; ++u)
+    for (int c = 0; c < 3; ++c) TS[u][c] = Tm[u][0] * S[c] + Tm[u][1] * S[3 + c] + Tm[u][2] * S[6 + c];
+  Real dT[2][3];
+  for (int u = 0; u < 2; ++u)
+    for (int c = 0; c < 3; ++c) dT[u][c] = 2 * (GV[2 * u] * TS[0][c] + GV[2 * u + 1] * TS[1][c]);
+  // T0 = j00 W0 + j02 W2, T1 = j11 W1 + j12 W2 (W = camera rotation rows).
+  const Real dj00 = dT[0][0] * R[0] + dT[0][1] * R[1] + dT[0][2] * R[2];
+  const Real dj02 = dT[0][0] * R[6] + dT[0][1] * R[7] + dT[0][2] * R[8];
+  const Real dj11 = dT[1][0] * R[3] + dT[1][1] * R[4] + dT[1][2] * R[5];
+  const Real dj12 = dT[1][0] * R[6] + dT[1][1] * R[7] + dT[1][2] * R[8];
+  const Real iz2 = inv_z * inv_z, iz3 = iz2 * inv_z;
+  // j00 = fx / tz, j11 = fy / tz.
+  dt[2] += -(cam.fx * dj00 + cam.fy * dj11) * iz2;
+  // j02 = -fx tx / tz^2 with tx = tx0 (free) or lim * tz (clamped: j02 = -fx lim / tz).
+  if (o.clamp_x) {
+    dt[2] += dj02 * cam.fx * o.txtz * iz2;
+  } else {
+    dt[0] += -dj02 * cam.fx * iz2;
+    dt[2] += dj02 * 2 * cam.fx * o.tx0 * iz3;
+  }
+  if (o.clamp_y) {
+    dt[2] += dj12 * cam.fy * o.tytz * iz2;
+  } else {
+    dt[1] += -dj12 * cam.fy * iz2;
+    dt[2] += dj12 * 2 * cam.fy * o.ty0 * iz3;
+  }
+  // t = R p + t_cam.
+  for (int k = 0; k < 3; ++k) dp[k] += R[k] * dt[0] + R[3 + k] * dt[1] + R[6 + k] * dt[2];
+  for (int k = 0; k < 3; ++k) out.positions[3 * slot + k] += dp[k];
+
+  // Sigma = M M^T, M = Rq diag(s): dL/dM = (GS + GS^T) M.
+  Real dM[9];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      Real s = 0;
+      for (int k = 0; k < 3; ++k) s += (GS[3 * r + k] + GS[3 * k + r]) * o.M[3 * k + c];
+      dM[3 * r + c] = s;
+    }
+  Real dR[9];
+  for (int c = 0; c < 3; ++c) {
+    Real ds = 0;
+    for (int r = 0; r < 3; ++r) {
+      ds += dM[3 * r + c] * o.Rm[3 * r + c];
+      dR[3 * r + c] = dM[3 * r + c] * o.s[c];
+    }
+    out.scales[3 * slot + c] += ds * o.s[c];  // d/d(log s) = s d/ds
+  }
+  Real dq[4];
+  quat_to_rotation_backward(o.qn, o.qnorm, dR, dq);
+  for (int k = 0; k < 4; ++k) out.rotations[4 * slot + k] += dq[k];
+}
+
+// A projected Gaussian as the pixel pass reads it.
+template <typename Real>
+struct DSplat {
+  Real mx, my, A, B, C, opacity, rgb[3];
+  uint32_t index;
+  int32_t slot;
+  int px0, py0, px1, py1;  // pixel box outside which alpha < 1/255 (inclusive)
+  int tx0, ty0, tx1, ty1;  // tile rectangle
+};
+
+// Screen footprint and pixel/tile boxes exactly as the forward rasteriser computes them.
+template <typename Real>
+bool make_splat(const Projected<Real>& f, size_t i, int32_t slot, int width, int height, int grid_x, int grid_y,
+                DSplat<Real>& out) {
+  const float r = float(f.radius);
+  const float mxf = float(f.mean_x), myf = float(f.mean_y);
+  const int rx0 = std::min(grid_x, std::max(0, int((mxf - r) / kTileSize)));
+  const int ry0 = std::min(grid_y, std::max(0, int((myf - r) / kTileSize)));
+  const int rx1 = std::min(grid_x, std::max(0, int((mxf + r + kTileSize - 1) / kTileSize)));
+  const int ry1 = std::min(grid_y, std::max(0, int((myf + r + kTileSize - 1) / kTileSize)));
+  if ((rx1 - rx0) * (ry1 - ry0) == 0) return false;
+  const float level = 2.f * std::log(255.f * float(f.opacity));
+  const float ex = std::sqrt(std::max(0.f, level * float(f.a))) * 1.001f + 0.01f;
+  const float ey = std::sqrt(std::max(0.f, level * float(f.c))) * 1.001f + 0.01f;
+  out.px0 = std::max(0, int(std::ceil(mxf - ex)));
+  out.px1 = std::min(width - 1, int(std::floor(mxf + ex)));
+  out.py0 = std::max(0, int(std::ceil(myf - ey)));
+  out.py1 = std::min(height - 1, int(std::floor(myf + ey)));
+  if (out.px0 > out.px1 || out.py0 > out.py1) return false;
+  out.tx0 = std::max(rx0, out.px0 / kTileSize);
+  out.tx1 = std::min(rx1, out.px1 / kTileSize + 1);
+  out.ty0 = std::max(ry0, out.py0 / kTileSize);
+  out.ty1 = std::min(ry1, out.py1 / kTileSize + 1);
+  if (out.tx0 >= out.tx1 || out.ty0 >= out.ty1) return false;
+  out.mx = f.mean_x;
+  out.my = f.mean_y;
+  out.A = f.conic[0];
+  out.B = f.conic[1];
+  out.C = f.conic[2];
+  out.opacity = f.opacity;
+  for (int c = 0; c < 3; ++c) out.rgb[c] = f.rgb[c];
+  out.index = uint32_t(i);
+  out.slot = slot;
+  return true;
+}
+
+// Alpha of splat g at pixel (x, y); false when the pixel is skipped (the INRIA rules:
+// power > 0 or alpha < 1/255). `G` receives exp(power), `clamped` whether alpha_max hit.
+template <typename Real>
+inline bool pixel_alpha(const DSplat<Real>& g, int x, int y, Real alpha_max, Real& alpha, Real& G, Real& dx, Real& dy,
+                        bool& clamped) {
+  dx = g.mx - Real(x);
+  dy = g.my - Real(y);
+  const Real power = Real(-0.5) * g.A * dx * dx + Real(-0.5) * g.C * dy * dy - g.B * dx * dy;
+  if (power > Real(0)) return false;
+  G = std::exp(power);
+  const Real a = g.opacity * G;
+  clamped = !(a < alpha_max);
+  alpha = clamped ? alpha_max : a;
+  return alpha >= Real(kMinAlpha);
+}
+
+}  // namespace
+
+template <typename Real>
+struct DiffRender<Real>::State {
+  std::vector<DSplat<Real>> splats;   // visible Gaussians in depth order
+  std::vector<uint32_t> tile_start;   // tiles + 1
+  std::vector<uint32_t> tile_list;    // per tile: indices into splats, front to back
+  std::vector<uint32_t> last;         // per pixel: 1 + position (in its tile list) of the last contributor
+  std::vector<uint32_t> diff_splats;  // indices into splats of the slotted Gaussians
+};
+
+template <typename Real>
+DiffRender<Real>::DiffRender() = default;
+template <typename Real>
+DiffRender<Real>::~DiffRender() = default;
+template <typename Real>
+DiffRender<Real>::DiffRender(DiffRender&&) noexcept = default;
+template <typename Real>
+DiffRender<Real>& DiffRender<Real>::operator=(DiffRender&&) noexcept = default;
+
+GaussianParams<float> params_of(const GaussianScene& scene) {
+  GaussianParams<float> p;
+  p.count = scene.size();
+  p.sh_degree = scene.sh_degree;
+  p.positions = scene.positions.data();
+  p.sh = scene.sh.data();
+  p.opacity = scene.opacity.data();
+  p.scales = scene.scales.data();
+  p.rotations = scene.rotations.data();
+  return p;
+}
+
+template <typename Real>
+void GaussianGrads<Real>::resize(size_t slots, int degree) {
+  sh_degree = degree;
+  positions.assign(3 * slots, 0);
+  sh.assign(slots * sh_coeff_count(degree) * 3, 0);
+  opacity.assign(slots, 0);
+  scales.assign(3 * slots, 0);
+  rotations.assign(4 * slots, 0);
+}
+
+template <typename Real>
+void GaussianGrads<Real>::zero() {
+  std::fill(positions.begin(), positions.end(), Real(0));
+  std::fill(sh.begin(), sh.end(), Real(0));
+  std::fill(opacity.begin(), opacity.end(), Real(0));
+  std::fill(scales.begin(), scales.end(), Real(0));
+  std::fill(rotations.begin(), rotations.end(), Real(0));
+}
+
+namespace {
+
+template <typename Real>
+int degree_for(const GaussianParams<Real>& P, const DiffRenderSettings& s) {
+  return s.sh_degree < 0 ? P.sh_degree : std::min(s.sh_degree, P.sh_degree);
+}
+
+}  // namespace
+
+template <typename Real>
+void diff_render_forward(const GaussianParams<Real>& P, const Camera& camera, const std::vector<int32_t>& slot,
+                         const DiffRenderSettings& s, DiffRender<Real>& out) {
+  if (camera.width <= 0 || camera.height <= 0) throw Error("diff render: camera has zero image size");
+  if (slot.size() != P.count) throw Error("diff render: slot table does not match the Gaussian count");
+  const int W = camera.width, H = camera.height;
+  const int grid_x = (W + kTileSize - 1) / kTileSize, grid_y = (H + kTileSize - 1) / kTileSize;
+  const size_t tiles = size_t(grid_x) * grid_y;
+  const int degree = degree_for(P, s);
+  const DiffCamera<Real> cam(camera);
+  const size_t N = P.count;
+  out.width = W;
+  out.height = H;
+  out.grid_x = grid_x;
+  out.grid_y = grid_y;
+  if (!out.state) out.state = std::make_unique<typename DiffRender<Real>::State>();
+  auto& st = *out.state;
+
+  // 1. Project (chunks in parallel, concatenated in index order).
+  constexpr size_t kChunk = 16384;
+  const size_t chunks = (N + kChunk - 1) / kChunk;
+  std::vector<std::vector<DSplat<Real>>> chunk_out(chunks);
+  parallel_for(chunks, s.threads, [&](int, size_t c) {
+    auto& v = chunk_out[c];
+    Projected<Real> f;
+    DSplat<Real> sp;
+    for (size_t i = c * kChunk, e = std::min(N, (c + 1) * kChunk); i < e; ++i)
+      if (project_gaussian(P, i, cam, Real(s.near_plane), Real(s.blur), degree, f) &&
+          make_splat(f, i, slot[i], W, H, grid_x, grid_y, sp))
+        v.push_back(sp);
+  });
+  size_t visible = 0;
+  for (const auto& v : chunk_out) visible += v.size();
+  // 2. Depth sort (stable radix sort of the float depth bits, as the rasteriser does).
+  std::vector<uint32_t> keys(visible), order(visible);
+  std::vector<const DSplat<Real>*> flat(visible);
+  {
+    size_t k = 0;
+    for (const auto& v : chunk_out)
+      for (const auto& sp : v) {
+        // Recompute the depth key from the position (the splat does not keep it).
+        const Real* p = P.positions + 3 * sp.index;
+        const float depth = float(cam.R[6] * p[0] + cam.R[7] * p[1] + cam.R[8] * p[2] + cam.t[2]);
+        std::memcpy(&keys[k], &depth, 4);
+        order[k] = uint32_t(k);
+        flat[k++] = &sp;
+      }
+  }
+  radix_sort_pairs(keys, order);
+  auto& splats = st.splats;
+  splats.resize(visible);
+  for (size_t j = 0; j < visible; ++j) splats[j] = *flat[order[j]];
+  st.diff_splats.clear();
+  for (size_t j = 0; j < visible; ++j)
+    if (splats[j].slot >= 0) st.diff_splats.push_back(uint32_t(j));
+  out.visible = visible;
+  out.diff_visible = st.diff_splats.size();
+
+  // 3. Active tiles and binning.
+  out.tile_active.assign(tiles, s.only_diff_tiles ? 0 : 1);
+  if (s.only_diff_tiles)
+    for (uint32_t j : st.diff_splats) {
+      const auto& g = splats[j];
+      for (int ty = g.ty0; ty < g.ty1; ++ty)
+        for (int tx = g.tx0; tx < g.tx1; ++tx) out.tile_active[size_t(ty) * grid_x + tx] = 1;
+    }
+  auto& tile_start = st.tile_start;
+  tile_start.assign(tiles + 1, 0);
+  for (const auto& g : splats)
+    for (int ty = g.ty0; ty < g.ty1; ++ty)
+      for (int tx = g.tx0; tx < g.tx1; ++tx) {
+        const size_t t = size_t(ty) * grid_x + tx;
+        if (out.tile_active[t]) ++tile_start[t + 1];
+      }
+  for (size_t t = 0; t < tiles; ++t) tile_start[t + 1] += tile_start[t];
+  auto& tile_list = st.tile_list;
+  tile_list.resize(tile_start[tiles]);
+  {
+    std::vector<uint32_t> fill(tile_start.begin(), tile_start.end() - 1);
+    for (size_t k = 0; k < splats.size(); ++k) {
+      const auto& g = splats[k];
+      for (int ty = g.ty0; ty < g.ty1; ++ty)
+        for (int tx = g.tx0; tx < g.tx1; ++tx) {
+          const size_t t = size_t(ty) * grid_x + tx;
+          if (out.tile_active[t]) tile_list[fill[t]++] = uint32_t(k);
+        }
+    }
+  }
+
+  // 4. Blend, tile by tile; Gaussian-major within a tile like the rasteriser.
+  out.color.assign(size_t(W) * H * 3, Real(0));
+  out.transmittance.assign(size_t(W) * H, Real(1));
+  st.last.assign(size_t(W) * H, 0);
+  const Real alpha_max = Real(s.alpha_max);
+  parallel_for(tiles, s.threads, [&](int, size_t t) {
+    const int tx = int(t % grid_x), ty = int(t / grid_x);
+    const int x_begin = tx * kTileSize, y_begin = ty * kTileSize;
+    const int x_end = std::min(W, x_begin + kTileSize), y_end = std::min(H, y_begin + kTileSize);
+    if (!out.tile_active[t]) {
+      for (int y = y_begin; y < y_end; ++y)
+        for (int x = x_begin; x < x_end; ++x)
+          for (int c = 0; c < 3; ++c) out.color[(size_t(y) * W + x) * 3 + c] = Real(s.background[c]);
+      return;
+    }
+    Real T[kTilePixels], C[3][kTilePixels];
+    uint32_t last[kTilePixels];
+    uint8_t done[kTilePixels];
+    std::fill(T, T + kTilePixels, Real(1));
+    for (auto& c : C) std::fill(c, c + kTilePixels, Real(0));
+    std::fill(last, last + kTilePixels, 0u);
+    std::fill(done, done + kTilePixels, uint8_t(0));
+    const int pixels = (x_end - x_begin) * (y_end - y_begin);
+    int finished = 0;
+    const uint32_t* list = tile_list.data() + tile_start[t];
+    const size_t count = tile_start[t + 1] - tile_start[t];
+    for (size_t n = 0; n < count && finished < pixels; ++n) {
+      const auto& g = splats[list[n]];
+      const int x0 = std::max(g.px0, x_begin), x1 = std::min(g.px1, x_end - 1);
+      const int y0 = std::max(g.py0, y_begin), y1 = std::min(g.py1, y_end - 1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const int k = (y - y_begin) * kTileSize + (x - x_begin);
+          if (done[k]) continue;
+          Real alpha, G, dx, dy;
+          bool clamped;
+          if (!pixel_alpha(g, x, y, alpha_max, alpha, G, dx, dy, clamped)) continue;
+          const Real test_T = T[k] * (Real(1) - alpha);
+          if (test_T < Real(kMinTransmittance)) {
+            done[k] = 1;
+            ++finished;
+            continue;
+          }
+          const Real w = alpha * T[k];
+          for (int c = 0; c < 3; ++c) C[c][k] += w * g.rgb[c];
+          T[k] = test_T;
+          last[k] = uint32_t(n + 1);
+        }
+    }
+    for (int y = y_begin; y < y_end; ++y)
+      for (int x = x_begin; x < x_end; ++x) {
+        const int k = (y - y_begin) * kTileSize + (x - x_begin);
+        const size_t p = size_t(y) * W + x;
+        out.transmittance[p] = T[k];
+        st.last[p] = last[k];
+        for (int c = 0; c < 3; ++c) out.color[3 * p + c] = C[c][k] + T[k] * Real(s.background[c]);
+      }
+  });
+}
+
+template <typename Real>
+void diff_render_backward(const GaussianParams<Real>& P, const Camera& camera, const std::vector<int32_t>& slot,
+                          const DiffRenderSettings& s, const DiffRender<Real>& fwd, const Real* dL_dcolor,
+                          GaussianGrads<Real>& grads) {
+  if (!fwd.state) throw Error("diff render: backward pass without a forward pass");
+  if (camera.width != fwd.width || camera.height != fwd.height)
+    throw Error("diff render: backward camera does not match the forward pass");
+  if (slot.size() != P.count) throw Error("diff render: slot table does not match the Gaussian count");
+  if (grads.sh_degree != P.sh_degree) throw Error("diff render: gradient buffers have another SH degree");
+  const auto& st = *fwd.state;
+  const int W = fwd.width, H = fwd.height, grid_x = fwd.grid_x;
+  const size_t tiles = size_t(fwd.grid_x) * fwd.grid_y;
+  const Real alpha_max = Real(s.alpha_max);
+  const Real bg[3] = {Real(s.background[0]), Real(s.background[1]), Real(s.background[2])};
+  const auto& splats = st.splats;
+
+  // 1. Pixel pass: per tile, back to front, screen-space gradients of slotted splats.
+  struct TileGrad {
+    uint32_t splat;
+    ScreenGrad<Real> g;
+  };
+  std::vector<std::vector<TileGrad>> tile_grads(tiles);
+  parallel_for(tiles, s.threads, [&](int, size_t t) {
+    if (!fwd.tile_active[t]) return;
+    const uint32_t* list = st.tile_list.data() + st.tile_start[t];
+    const size_t count = st.tile_start[t + 1] - st.tile_start[t];
+    size_t front = count;  // first slotted splat in the list
+    for (size_t n = 0; n < count; ++n)
+      if (splats[list[n]].slot >= 0) {
+        front = n;
+        break;
+      }
+    if (front == count) return;
+    const int tx = int(t % grid_x), ty = int(t / grid_x);
+    const int x_begin = tx * kTileSize, y_begin = ty * kTileSize;
+    const int x_end = std::min(W, x_begin + kTileSize), y_end = std::min(H, y_begin + kTileSize);
+    Real T[kTilePixels], S[3][kTilePixels], dC[3][kTilePixels], Tbg[3][kTilePixels];
+    uint32_t last[kTilePixels];
+    uint32_t max_last = 0;
+    for (int k = 0; k < kTilePixels; ++k) last[k] = 0;
+    for (int y = y_begin; y < y_end; ++y)
+      for (int x = x_begin; x < x_end; ++x) {
+        const int k = (y - y_begin) * kTileSize + (x - x_begin);
+        const size_t p = size_t(y) * W + x;
+        T[k] = fwd.transmittance[p];
+        last[k] = st.last[p];
+        max_last = std::max(max_last, last[k]);
+        for (int c = 0; c < 3; ++c) {
+          S[c][k] = 0;
+          dC[c][k] = dL_dcolor[3 * p + c];
+          Tbg[c][k] = T[k] * bg[c];
+        }
+      }
+    auto& out = tile_grads[t];
+    for (size_t n = max_last; n-- > front;) {
+      const auto& g = splats[list[n]];
+      const bool diff = g.slot >= 0;
+      ScreenGrad<Real> acc;
+      bool touched = false;
+      const int x0 = std::max(g.px0, x_begin), x1 = std::min(g.px1, x_end - 1);
+      const int y0 = std::max(g.py0, y_begin), y1 = std::min(g.py1, y_end - 1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const int k = (y - y_begin) * kTileSize + (x - x_begin);
+          if (n >= last[k]) continue;
+          Real alpha, G, dx, dy;
+          bool clamped;
+          if (!pixel_alpha(g, x, y, alpha_max, alpha, G, dx, dy, clamped)) continue;
+          const Real one_minus = Real(1) - alpha;
+          const Real Tb = T[k] / one_minus;  // transmittance in front of this splat
+          if (diff) {
+            touched = true;
+            const Real w = alpha * Tb;
+            Real d_alpha = 0;
+            for (int c = 0; c < 3; ++c) {
+              acc.rgb[c] += w * dC[c][k];
+              d_alpha += dC[c][k] * (Tb * g.rgb[c] - (S[c][k] + Tbg[c][k]) / one_minus);
+            }
+            if (!clamped) {
+              acc.opacity += d_alpha * G;
+              // alpha = o exp(power): d alpha / d power = alpha.
+              const Real dp = d_alpha * alpha;
+              acc.conic[0] += dp * Real(-0.5) * dx * dx;
+              acc.conic[1] += -dp * dx * dy;
+              acc.conic[2] += dp * Real(-0.5) * dy * dy;
+              acc.mean[0] += -dp * (g.A * dx + g.B * dy);
+              acc.mean[1] += -dp * (g.C * dy + g.B * dx);
+            }
+          }
+          for (int c = 0; c < 3; ++c) S[c][k] += g.rgb[c] * alpha * Tb;
+          T[k] = Tb;
+        }
+      if (diff && touched) out.push_back({list[n], acc});
+    }
+  });
+
+  // 2. Reduce per splat in tile order (deterministic), then chain to the parameters.
+  std::vector<int32_t> pos_of_splat(splats.size(), -1);
+  for (size_t j = 0; j < st.diff_splats.size(); ++j) pos_of_splat[st.diff_splats[j]] = int32_t(j);
+  std::vector<ScreenGrad<Real>> screen(st.diff_splats.size());
+  for (size_t t = 0; t < tiles; ++t)
+    for (const auto& tg : tile_grads[t]) {
+      ScreenGrad<Real>& d = screen[pos_of_splat[tg.splat]];
+      for (int k = 0; k < 2; ++k) d.mean[k] += tg.g.mean[k];
+      for (int k = 0; k < 3; ++k) d.conic[k] += tg.g.conic[k];
+      d.opacity += tg.g.opacity;
+      for (int k = 0; k < 3; ++k) d.rgb[k] += tg.g.rgb[k];
+    }
+  const DiffCamera<Real> cam(camera);
+  const int degree = degree_for(P, s);
+  parallel_for(st.diff_splats.size(), s.threads, [&](int, size_t j) {
+    const auto& sp = splats[st.diff_splats[j]];
+    Projected<Real> f;
+    if (!project_gaussian(P, sp.index, cam, Real(s.near_plane), Real(s.blur), degree, f)) return;
+    if (size_t(sp.slot) >= grads.slots()) throw Error("diff render: slot outside the gradient buffers");
+    project_gaussian_backward(P, sp.index, cam, degree, f, screen[j], grads, size_t(sp.slot));
+  });
+}
+
+template struct GaussianGrads<float>;
+template struct GaussianGrads<double>;
+template class DiffRender<float>;
+template class DiffRender<double>;
+template void diff_render_forward<float>(const GaussianParams<float>&, const Camera&, const std::vector<int32_t>&,
+                                         const DiffRenderSettings&, DiffRender<float>&);
+template void diff_render_forward<double>(const GaussianParams<double>&, const Camera&, const std::vector<int32_t>&,
+                                          const DiffRenderSettings&, DiffRender<double>&);
+template void diff_render_backward<float>(const GaussianParams<float>&, const Camera&, const std::vector<int32_t>&,
+                                          const DiffRenderSettings&, const DiffRender<float>&, const float*,
+                                          GaussianGrads<float>&);
+template void diff_render_backward<double>(const GaussianParams<double>&, const Camera&, const std::vector<int32_t>&,
+                                           const DiffRenderSettings&, const DiffRender<double>&, const double*,
+                                           GaussianGrads<double>&);
+
+}  // namespace isegman
