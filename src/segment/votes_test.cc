@@ -1,0 +1,90 @@
+#include "segment/votes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/sh.h"
+
+namespace isegman::segment {
+namespace {
+
+void add_gaussian(GaussianScene& g, Vec3 p, double s, double o) {
+  g.positions.insert(g.positions.end(), {float(p.x), float(p.y), float(p.z)});
+  g.scales.insert(g.scales.end(), 3, float(std::log(s)));
+  g.rotations.insert(g.rotations.end(), {1, 0, 0, 0});
+  g.opacity.push_back(float(std::log(o / (1 - o))));
+  g.sh.insert(g.sh.end(), {0.f, 0.f, 0.f});
+}
+
+Camera axis_camera() {
+  Camera c;
+  c.width = 64;
+  c.height = 32;
+  c.fx = c.fy = 100;
+  c.cx = 32;
+  c.cy = 16;
+  return c;
+}
+
+TEST(Votes, HandBuiltScene) {
+  // Gaussian 0 on the left half, 1 on the right half, 2 behind 0 (partly hidden).
+  GaussianScene g;
+  g.sh_degree = 0;
+  add_gaussian(g, {-0.4, 0, 3}, 0.05, 0.9);
+  add_gaussian(g, {0.4, 0, 3}, 0.05, 0.9);
+  add_gaussian(g, {-0.4, 0, 5}, 0.08, 0.9);
+  PreparedFrame f = prepare_frame(g, axis_camera());
+  ViewVotes all = total_votes(f, 1);
+  Image left(64, 32, 1);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) left.at(x, y) = 1.f;
+  ViewVotes pos = masked_votes(f, left, 2);
+  VoteAccumulator acc(3);
+  acc.add(pos, all);
+  auto ratios = acc.ratios();
+  EXPECT_NEAR(ratios[0], 1.0, 1e-6);  // entirely inside the mask
+  EXPECT_EQ(ratios[1], 0.f);          // entirely outside
+  EXPECT_GT(ratios[2], 0.99);         // hidden part does not vote at all
+  EXPECT_GT(acc.total()[2], 0);
+  EXPECT_LT(acc.total()[2], acc.total()[0]);  // occluded: less visible weight
+  auto sel = acc.select(0.8, 0.0);
+  EXPECT_EQ(sel, (std::vector<bool>{true, false, true}));
+  // min_total removes Gaussians with negligible weight.
+  const double w2 = double(acc.total()[2]) / kVoteScale;
+  EXPECT_FALSE(acc.select(0.8, w2 * 1.01)[2]);
+  // The total votes equal the rendered alpha summed over the image.
+  RenderOutput r = render(g, axis_camera());
+  double alpha_sum = 0, vote_sum = 0;
+  for (float a : r.alpha.data) alpha_sum += a;
+  for (int64_t w : all.weight) vote_sum += double(w) / kVoteScale;
+  EXPECT_NEAR(vote_sum, alpha_sum, 1e-3);
+}
+
+TEST(Votes, AddingAndRemovingAViewIsExact) {
+  GaussianScene g;
+  g.sh_degree = 0;
+  for (int i = 0; i < 40; ++i) add_gaussian(g, {-0.8 + 0.04 * i, 0.1 * std::sin(i), 3 + 0.05 * i}, 0.04, 0.6);
+  const Camera c = axis_camera();
+  PreparedFrame f = prepare_frame(g, c);
+  Image mask(64, 32, 1);
+  for (int y = 4; y < 20; ++y)
+    for (int x = 10; x < 50; ++x) mask.at(x, y) = 1.f;
+  ViewVotes all = total_votes(f), pos = masked_votes(f, mask);
+  VoteAccumulator base(g.size());
+  base.add(pos, all);
+  VoteAccumulator acc = base;
+  Image mask2(64, 32, 1);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 20; ++x) mask2.at(x, y) = 1.f;
+  ViewVotes pos2 = masked_votes(f, mask2);
+  acc.add(pos2, all);
+  EXPECT_FALSE(acc == base);
+  acc.add(pos2, all, -1);
+  EXPECT_TRUE(acc == base);
+  // Thread count does not change a single vote.
+  EXPECT_EQ(masked_votes(f, mask, 1).weight, masked_votes(f, mask, 3).weight);
+}
+
+}  // namespace
+}  // namespace isegman::segment
