@@ -1,5 +1,6 @@
 // isegman demo: builds the synthetic demo scene, writes it as a trainer-style scene
 // directory and renders a few views, so every step can be seen without any data.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -11,11 +12,76 @@
 #include "io/image_io.h"
 #include "io/scene_loader.h"
 #include "render/rasterizer.h"
+#ifdef ISEGMAN_HAVE_SEGMENT
+#include "app/segment_args.h"
+#include "core/selection.h"
+#include "segment/evaluation.h"
+#include "segment/overlay.h"
+#include "segment/pipeline.h"
+#endif
 
 namespace fs = std::filesystem;
 
 namespace isegman::app {
 namespace {
+
+#ifdef ISEGMAN_HAVE_SEGMENT
+// Segments one object of the demo scene from a single click and scores it against the
+// scene's known labels. Returns the selection (empty when SAM is not installed).
+std::vector<bool> demo_segmentation(const DemoScene& demo, int object, const fs::path& out, int threads) {
+  Args none({}, {}, {});
+  SegmentSetup setup = parse_segment_setup(none);
+  setup.session.threads = setup.views.threads = threads;
+  setup.views_spec = "50%";
+  const fs::path enc = fs::path(setup.sam_dir) / "encoder.onnx";
+  if (!fs::exists(enc)) {
+    std::printf("segmentation skipped: SAM model files not found in %s (run scripts/setup.sh)\n",
+                setup.sam_dir.c_str());
+    return {};
+  }
+  int camera = 0;
+  double x = 0, y = 0;
+  if (!demo_click(demo, object, camera, x, y)) throw Error("demo: no camera sees the object");
+  const Camera& cam = demo.bundle.cameras[size_t(camera)];
+  std::printf("segmenting '%s' from one click at (%.0f, %.0f) in %s; %s of the views vote\n",
+              demo.objects[size_t(object)].name.c_str(), x, y, cam.name.c_str(), setup.views_spec.c_str());
+  auto sam = load_sam(setup);
+  segment::PipelineTimings t;
+  auto session = segment::segment_from_prompts(
+      demo.bundle, camera, {{x, y, 1}}, sam, setup.session, setup.views, setup.views_spec, &t,
+      [](const std::string& line) { std::printf("  %s\n", line.c_str()); });
+  const std::vector<bool>& sel = session->selection();
+  const std::vector<bool> truth = demo_object_mask(demo, object);
+  double iou = 0;
+  int n = 0;
+  for (const auto& v : session->views()) {
+    const Image gt = segment::selection_mask(demo.bundle.gaussians, v.camera, truth, v.camera.width, v.camera.height);
+    const Image pr = segment::selection_mask(demo.bundle.gaussians, v.camera, sel, v.camera.width, v.camera.height);
+    const segment::MaskScore sc = segment::score_mask(pr, gt);
+    if (std::count(gt.data.begin(), gt.data.end(), 1.f) < 50) continue;
+    iou += sc.iou;
+    ++n;
+  }
+  size_t count = size_t(std::count(sel.begin(), sel.end(), true));
+  std::printf("selected %zu Gaussians (the object has %zu); mean IoU of the rendered masks vs ground truth: %.2f%%\n",
+              count, size_t(std::count(truth.begin(), truth.end(), true)), n ? 100 * iou / n : 0.0);
+  std::printf("interaction: propagation %.0f ms, SAM %.0f ms, voting %.0f ms (views + embeddings %.0f ms)\n",
+              t.ms_propagation, t.ms_sam, t.ms_voting, t.ms_views);
+  const fs::path seg_dir = out / "segmentation";
+  fs::create_directories(seg_dir);
+  Selection s = Selection::from_mask(demo.bundle.gaussians, sel);
+  s.score = session->scores();
+  write_selection((out / (demo.objects[size_t(object)].name + ".isel")).string(), s);
+  for (size_t k = 0; k < session->views().size(); ++k) {
+    const auto& v = session->views()[k];
+    write_png((seg_dir / (v.name + ".png")).string(),
+              segment::make_overlay(v.rgb, session->view_states()[k], session->selection_coverage(int(k))));
+  }
+  std::printf("wrote %s and per-view evidence in %s\n",
+              (out / (demo.objects[size_t(object)].name + ".isel")).string().c_str(), seg_dir.string().c_str());
+  return sel;
+}
+#endif
 
 int run_demo(const std::vector<std::string>& argv) {
   Args args(argv, {"out", "density", "threads"}, {});
@@ -50,6 +116,9 @@ int run_demo(const std::vector<std::string>& argv) {
     std::printf("rendered %s (%dx%d) in %.1f ms -> %s\n", cam.name.c_str(), cam.width, cam.height,
                 r.stats.ms_preprocess + r.stats.ms_sort + r.stats.ms_raster, path.c_str());
   }
+#ifdef ISEGMAN_HAVE_SEGMENT
+  const std::vector<bool> selection = demo_segmentation(demo, 0, fs::path(out), s.threads);
+#endif
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("demo finished in %.2f s; try: isegman info %s\n", secs, scene_dir.c_str());
   return 0;

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/sh.h"
+#include "render/rasterizer.h"
 
 namespace isegman {
 namespace {
@@ -174,6 +175,34 @@ DemoScene make_demo_scene(const DemoSceneOptions& opt) {
     demo.bundle.cameras.push_back(cam);
   }
   return demo;
+}
+
+std::vector<bool> demo_object_mask(const DemoScene& demo, int object) {
+  std::vector<bool> m(demo.labels.size());
+  for (size_t i = 0; i < m.size(); ++i) m[i] = demo.labels[i] == object;
+  return m;
+}
+
+bool demo_click(const DemoScene& demo, int object, int& camera, double& x, double& y, int first_camera) {
+  const std::vector<bool> truth = demo_object_mask(demo, object);
+  const size_t n = demo.bundle.cameras.size();
+  for (size_t k = 0; k < n; ++k) {
+    const size_t c = (size_t(std::max(0, first_camera)) + k) % n;
+    const Camera& cam = demo.bundle.cameras[c];
+    double u, v;
+    if (!cam.project(demo.objects[size_t(object)].center, u, v)) continue;
+    const double margin = 0.04 * cam.width;
+    if (u < margin || v < margin || u > cam.width - margin || v > cam.height - margin) continue;
+    RenderSettings s;
+    s.color = false;
+    s.depth = false;
+    if (render_selection(demo.bundle.gaussians, cam, truth, s).at(int(u), int(v)) < 0.9f) continue;
+    camera = int(c);
+    x = std::floor(u);
+    y = std::floor(v);
+    return true;
+  }
+  return false;
 }
 
 }  // namespace isegman

@@ -32,4 +32,12 @@ struct DemoSceneOptions {
 
 DemoScene make_demo_scene(const DemoSceneOptions& options = {});
 
+// Per-Gaussian membership of one object.
+std::vector<bool> demo_object_mask(const DemoScene& demo, int object);
+
+// A click on an object: the first camera (from `first_camera` on, wrapping) in which the
+// object's centre projects inside the image and is what that pixel shows. Returns the
+// camera index and the pixel (SAM convention: pixel x, y), or false when none sees it.
+bool demo_click(const DemoScene& demo, int object, int& camera, double& x, double& y, int first_camera = 0);
+
 }  // namespace isegman

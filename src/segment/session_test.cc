@@ -43,21 +43,9 @@ std::vector<bool> label_mask(const std::vector<int>& labels, int object) {
   return m;
 }
 
-// A camera where the object's centre is what the camera sees, and that pixel.
 bool find_click(const DemoScene& demo, int object, int& camera, PromptClick& click) {
-  const auto truth = label_mask(demo.labels, object);
-  for (size_t c = 0; c < demo.bundle.cameras.size(); ++c) {
-    const Camera& cam = demo.bundle.cameras[c];
-    double u, v;
-    if (!cam.project(demo.objects[size_t(object)].center, u, v)) continue;
-    if (u < 20 || v < 20 || u > cam.width - 20 || v > cam.height - 20) continue;
-    Image cov = render_selection(demo.bundle.gaussians, cam, truth);
-    if (cov.at(int(u), int(v)) < 0.9f) continue;
-    camera = int(c);
-    click = {std::floor(u), std::floor(v), 1};
-    return true;
-  }
-  return false;
+  click.label = 1;
+  return demo_click(demo, object, camera, click.x, click.y);
 }
 
 // Mean IoU of the selection's rendered mask against the true object's, over the views.
