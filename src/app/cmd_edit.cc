@@ -1,0 +1,341 @@
+// isegman edit <scene> [selection] <operation> [options] ... --out FILE: the manipulation
+// toolbox on the command line (see docs/edit.md). Operations chain left to right on one
+// edit session; each prints what it changed.
+#include <cstdio>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "app/args.h"
+#include "app/command.h"
+#include "core/error.h"
+#include "core/selection.h"
+#include "edit/checks.h"
+#include "edit/colorize.h"
+#include "edit/combine.h"
+#include "edit/history.h"
+#include "edit/remove.h"
+#include "edit/scene_format.h"
+#include "edit/selection_tools.h"
+#include "edit/transform.h"
+#include "io/atomic_file.h"
+#include "io/scene_loader.h"
+
+namespace isegman::app {
+namespace {
+
+using namespace isegman::edit;
+
+const char* kUsage = R"(usage: isegman edit <scene> [selection] <operation> [options] [<operation> ...] --out FILE
+
+<scene>: a scene directory, an INRIA PLY or a .splat file (the format is detected by content).
+--out FILE        result, *.ply (INRIA PLY) or *.splat; never one of the inputs
+--save-selection FILE   also write the final selection (.isel)
+--history-mb N    undo history cap (default 512)
+
+Selection (before the first operation, or after `select`):
+  --selection FILE          a selection file (.isel) made for this scene
+  --box x0,y0,z0,x1,y1,z1   centres inside the box (repeatable: union)
+  --sphere x,y,z,r          centres inside the sphere (repeatable: union)
+  --outside                 the boxes/spheres select what lies outside them
+  --opacity-min A / --opacity-max A   keep Gaussians with sigmoid(opacity) in range
+  --size-min S / --size-max S         keep Gaussians whose largest scale is in range
+  --grow K [--grow-radius R] [--grow-steps N]   add K nearest neighbours (within R)
+  --invert                  invert the final selection
+  (order: file | shapes, then thresholds, then grow, then invert)
+
+Operations (each acts on the current selection S):
+  remove                    delete S
+  extract                   keep only S
+  colorize --color C [--mode replace|balanced]   C: '#RRGGBB' or r,g,b in [0,1]
+  scale --factor E          scale S by E > 0 about its centroid
+  copy [T]                  paste a transformed copy of S (the copy becomes S)
+  transform [T]             move/rotate/scale S in place
+  combine --into OTHER [T]  insert S into scene OTHER; the result is OTHER + S
+  select [selection] [--combine replace|add|subtract|intersect]
+  undo / redo               step back / forward in the history
+  T: [--translate x,y,z] [--rotate-deg rx,ry,rz] [--scale s] [--pivot x,y,z]
+     rotation about x, then y, then z (world axes), about S's centroid unless --pivot.)";
+
+const std::set<std::string> kOps = {"remove", "extract", "colorize", "scale", "copy", "transform",
+                                    "combine", "select", "undo", "redo"};
+const std::set<std::string> kGlobalValue = {"out", "save-selection", "history-mb"};
+const std::set<std::string> kSelectValue = {"selection", "box", "sphere", "opacity-min", "opacity-max",
+                                            "size-min", "size-max", "grow", "grow-radius", "grow-steps"};
+const std::set<std::string> kSelectSwitch = {"outside", "invert"};
+const std::set<std::string> kTransformValue = {"translate", "rotate-deg", "scale", "pivot"};
+
+struct Segment {
+  std::string op;  // "" for the leading segment (scene + initial selection)
+  std::vector<std::string> args;
+};
+
+std::set<std::string> op_value_flags(const std::string& op) {
+  std::set<std::string> f;
+  if (op.empty() || op == "select") {
+    f = kSelectValue;
+    if (op == "select") f.insert("combine");
+  } else if (op == "colorize") {
+    f = {"color", "mode"};
+  } else if (op == "scale") {
+    f = {"factor"};
+  } else if (op == "copy" || op == "transform") {
+    f = kTransformValue;
+  } else if (op == "combine") {
+    f = kTransformValue;
+    f.insert("into");
+  }
+  return f;
+}
+
+std::set<std::string> op_switch_flags(const std::string& op) {
+  return (op.empty() || op == "select") ? kSelectSwitch : std::set<std::string>{};
+}
+
+bool takes_value(const std::string& token, const std::string& op) {
+  if (token.size() < 3 || token.compare(0, 2, "--") != 0 || token.find('=') != std::string::npos) return false;
+  const std::string name = token.substr(2);
+  return kGlobalValue.count(name) || op_value_flags(op).count(name);
+}
+
+std::string fmt(const Vec3& v) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.4g, %.4g, %.4g)", v.x, v.y, v.z);
+  return buf;
+}
+
+struct Loaded {
+  GaussianScene scene;
+  std::string file;  // the file the Gaussians came from
+};
+
+Loaded load_any(const std::string& path) {
+  Loaded l;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    SceneLoadOptions opt;
+    opt.require_cameras = false;
+    SceneBundle b = load_scene(path, opt);
+    l.scene = std::move(b.gaussians);
+    l.file = b.ply_path;
+  } else {
+    SceneFormat f;
+    std::vector<std::string> notes;
+    l.scene = read_scene_file(path, &f, &notes);
+    for (const auto& n : notes) std::printf("note: %s\n", n.c_str());
+    l.file = path;
+  }
+  return l;
+}
+
+Vec3 vec_arg(const Args& a, const std::string& flag, const Vec3& fallback) {
+  if (!a.has(flag)) return fallback;
+  std::vector<double> v = parse_numbers(a.get(flag), 3, "--" + flag);
+  return {v[0], v[1], v[2]};
+}
+
+Similarity similarity_from(const Args& a) {
+  Similarity t;
+  t.translation = vec_arg(a, "translate", {0, 0, 0});
+  const Vec3 r = vec_arg(a, "rotate-deg", {0, 0, 0});
+  t.rotation = rotation_from_euler_deg(r.x, r.y, r.z);
+  t.scale = a.get_double("scale", 1.0);
+  if (a.has("pivot")) t.pivot = vec_arg(a, "pivot", {});
+  return t;
+}
+
+// Builds a selection from selection flags; `given` says whether any flag was present.
+Selection selection_from(const Args& a, const GaussianScene& scene, std::vector<std::string>& inputs, bool& given) {
+  given = false;
+  Selection shapes = Selection::none_of(scene);
+  bool have_base = false;
+  if (a.has("selection")) {
+    const std::string path = a.get("selection");
+    Selection file = read_selection(path);
+    file.check_matches(scene, path);
+    shapes = unite(shapes, file);
+    inputs.push_back(path);
+    have_base = true;
+  }
+  Selection geo = Selection::none_of(scene);
+  bool have_geo = false;
+  for (const std::string& b : a.all("box")) {
+    std::vector<double> v = parse_numbers(b, 6, "--box");
+    geo = unite(geo, select_box(scene, {v[0], v[1], v[2]}, {v[3], v[4], v[5]}));
+    have_geo = true;
+  }
+  for (const std::string& s : a.all("sphere")) {
+    std::vector<double> v = parse_numbers(s, 4, "--sphere");
+    geo = unite(geo, select_sphere(scene, {v[0], v[1], v[2]}, v[3]));
+    have_geo = true;
+  }
+  if (a.has("outside")) {
+    if (!have_geo) throw Error("--outside needs --box or --sphere");
+    geo = invert(geo);
+  }
+  if (have_geo) shapes = unite(shapes, geo);
+  have_base |= have_geo;
+  const bool thresholds = a.has("opacity-min") || a.has("opacity-max") || a.has("size-min") || a.has("size-max");
+  Selection sel = have_base ? shapes : (thresholds ? Selection::all_of(scene) : Selection::none_of(scene));
+  if (a.has("opacity-min") || a.has("opacity-max"))
+    sel = intersect(sel, select_opacity(scene, a.get_double("opacity-min", 0.0), a.get_double("opacity-max", 1.0)));
+  if (a.has("size-min") || a.has("size-max"))
+    sel = intersect(sel, select_size(scene, a.get_double("size-min", 0.0), a.get_double("size-max", 1e30)));
+  if (a.has("grow"))
+    sel = grow(scene, sel, a.get_int("grow", 8), a.get_double("grow-radius", 0.0), a.get_int("grow-steps", 1));
+  if (a.has("invert")) sel = invert(sel);
+  given = have_base || thresholds || a.has("grow") || a.has("invert");
+  return sel;
+}
+
+void print_selection(const EditSession& e, const char* what) {
+  const size_t n = e.selection().count();
+  if (n == 0) {
+    std::printf("  %s: nothing selected (of %zu Gaussians)\n", what, e.scene().size());
+    return;
+  }
+  std::printf("  %s: %zu of %zu Gaussians, centroid %s\n", what, n, e.scene().size(),
+              fmt(selection_centroid(e.scene(), e.mask())).c_str());
+}
+
+int run_edit(const std::vector<std::string>& argv) {
+  // Split into segments at operation words (a flag's value is never an operation).
+  std::vector<Segment> segs(1);
+  std::vector<std::string> global;
+  for (size_t i = 0; i < argv.size(); ++i) {
+    const std::string& t = argv[i];
+    const std::string& op = segs.back().op;
+    if (kOps.count(t)) {
+      segs.push_back({t, {}});
+      continue;
+    }
+    const bool is_global = t.size() > 2 && t.compare(0, 2, "--") == 0 &&
+                           kGlobalValue.count(t.substr(2, t.find('=') == std::string::npos ? std::string::npos
+                                                                                            : t.find('=') - 2));
+    std::vector<std::string>& dst = is_global ? global : segs.back().args;
+    dst.push_back(t);
+    if (takes_value(t, op) && i + 1 < argv.size()) dst.push_back(argv[++i]);
+  }
+  const Args g(global, kGlobalValue, {});
+  if (!g.has("out")) throw Error("edit: --out FILE is required (*.ply or *.splat)");
+  const std::string out = g.get("out");
+  output_format_for(out);  // fail early on an unknown extension
+  HistoryLimits limits;
+  const double mb = g.get_double("history-mb", 512);
+  if (!(mb >= 0 && mb < 1e7)) throw Error("--history-mb must be in [0, 1e7)");
+  limits.max_bytes = size_t(mb * 1024 * 1024);
+
+  const Args head(segs[0].args, op_value_flags(""), op_switch_flags(""));
+  if (segs.size() < 2) throw Error("edit: no operation given (remove, extract, colorize, scale, copy, transform, combine, select)");
+  const std::string scene_path = head.positional(0, "<scene>: a scene directory, PLY or .splat file");
+  if (head.positionals().size() > 1) throw Error("edit: unexpected argument '" + head.positionals()[1] + "'");
+  Loaded in = load_any(scene_path);
+  std::vector<std::string> inputs{in.file, scene_path};
+  refuse_overwriting_inputs(out, inputs);  // before any work; checked again at the end
+  std::printf("scene %s: %zu Gaussians, SH degree %d\n", in.file.c_str(), in.scene.size(), in.scene.sh_degree);
+  EditSession session(std::move(in.scene), limits);
+  bool given = false;
+  Selection first = selection_from(head, session.scene(), inputs, given);
+  if (given) {
+    session.select(first, "initial selection");
+    print_selection(session, "selection");
+  }
+
+  for (size_t s = 1; s < segs.size(); ++s) {
+    const std::string& op = segs[s].op;
+    const Args a(segs[s].args, op_value_flags(op), op_switch_flags(op));
+    if (!a.positionals().empty()) throw Error(op + ": unexpected argument '" + a.positionals()[0] + "'");
+    std::printf("%s:\n", op.c_str());
+    size_t n_before = session.scene().size();
+    const bool had_selection = !session.selection().empty();
+    const Vec3 c_before = selection_centroid(session.scene(), session.mask());
+    auto need = [&]() {
+      if (!had_selection)
+        throw Error(op, "the selection is empty: give --selection, --box or --sphere (or `select ...`) first");
+      return session.selection();
+    };
+    Delta d;
+    bool planned = true;
+    if (op == "remove") {
+      d = plan_remove(session.scene(), need());
+    } else if (op == "extract") {
+      d = plan_extract(session.scene(), need());
+    } else if (op == "colorize") {
+      if (!a.has("color")) throw Error("colorize: --color '#RRGGBB' or r,g,b is required");
+      d = plan_colorize(session.scene(), need(), parse_color(a.get("color")),
+                        parse_colorize_mode(a.get("mode", "replace")));
+    } else if (op == "scale") {
+      if (!a.has("factor")) throw Error("scale: --factor E is required");
+      d = plan_scale(session.scene(), need(), a.get_double("factor", 1.0));
+    } else if (op == "copy") {
+      d = plan_copy(session.scene(), need(), similarity_from(a));
+    } else if (op == "transform") {
+      d = plan_transform(session.scene(), need(), similarity_from(a));
+    } else if (op == "combine") {
+      if (!a.has("into")) throw Error("combine: --into OTHER_SCENE is required");
+      Loaded other = load_any(a.get("into"));
+      inputs.push_back(other.file);
+      inputs.push_back(a.get("into"));
+      std::printf("  into %s: %zu Gaussians, SH degree %d\n", other.file.c_str(), other.scene.size(),
+                  other.scene.sh_degree);
+      const Selection sel = need();
+      d = plan_combine(other.scene, std::vector<bool>(other.scene.size(), false), session.scene(), sel,
+                       similarity_from(a));
+      // The session continues on the other scene (its history starts here).
+      n_before = other.scene.size();
+      session = EditSession(std::move(other.scene), limits);
+    } else if (op == "select") {
+      bool any = false;
+      Selection next = selection_from(a, session.scene(), inputs, any);
+      if (!any) throw Error("select: give --selection, --box, --sphere, a threshold, --grow or --invert");
+      const std::string mode = a.get("combine", "replace");
+      const Selection cur = session.selection();
+      if (mode == "add") next = unite(cur, next);
+      else if (mode == "subtract") next = subtract(cur, next);
+      else if (mode == "intersect") next = intersect(cur, next);
+      else if (mode != "replace") throw Error("select: --combine must be replace, add, subtract or intersect");
+      session.select(next, "select (" + mode + ")");
+      planned = false;
+    } else if (op == "undo" || op == "redo") {
+      std::printf("  %s: %s\n", op == "undo" ? "undid" : "redid",
+                  (op == "undo" ? session.undo() : session.redo()).c_str());
+      planned = false;
+    }
+    if (planned) {
+      const std::string label = d.label;
+      const std::vector<std::string> notes = d.notes;
+      session.apply(std::move(d));
+      std::printf("  %s\n", label.c_str());
+      for (const auto& n : notes) std::printf("  note: %s\n", n.c_str());
+    }
+    if (!session.notice().empty()) std::printf("  warning: %s\n", session.notice().c_str());
+    const size_t n_after = session.scene().size();
+    std::printf("  Gaussians: %zu -> %zu (%+lld)\n", n_before, n_after, (long long)n_after - (long long)n_before);
+    if (had_selection && op != "select")
+      std::printf("  centroid of the selection before: %s\n", fmt(c_before).c_str());
+    print_selection(session, "selection now");
+  }
+
+  std::vector<std::string> notes;
+  write_scene_file(out, session.scene(), inputs, &notes);
+  for (const auto& n : notes) std::printf("note: %s\n", n.c_str());
+  std::printf("wrote %s (%s, %zu Gaussians, SH degree %d)\n", out.c_str(), format_name(output_format_for(out)),
+              session.scene().size(), output_format_for(out) == SceneFormat::kPly ? session.scene().sh_degree : 0);
+  if (g.has("save-selection")) {
+    const std::string sp = g.get("save-selection");
+    refuse_overwriting_inputs(sp, inputs);
+    // Tie the selection to the scene as written (a .splat quantises it): read it back.
+    const GaussianScene written = read_scene_file(out);
+    if (written.size() != session.scene().size()) throw Error(out, "read back a different number of Gaussians");
+    write_selection(sp, Selection::from_mask(written, session.mask()));
+    std::printf("wrote %s (selection of %zu Gaussians)\n", sp.c_str(), session.selection().count());
+  }
+  return 0;
+}
+
+RegisterCommand reg("edit", "remove, recolour, scale, copy, move or combine a selection; write PLY or .splat",
+                    kUsage, run_edit);
+
+}  // namespace
+}  // namespace isegman::app
