@@ -119,7 +119,7 @@ void run_edit_demo(const DemoScene& demo, const std::string& out_dir) {
   snapshot("removed");
   session.undo();
 
-  step(plan_colorize(session.scene(), session.selection(), parse_color("#2a6df4"), ColorizeMode::kBalanced));
+  step(plan_colorize(session.scene(), session.selection(), parse_color("#f08020"), ColorizeMode::kBalanced));
   snapshot("recoloured");
   session.undo();
 
