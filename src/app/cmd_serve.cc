@@ -1,0 +1,72 @@
+// isegman serve: the interactive web app on a local HTTP server.
+#include <cstdio>
+#include <string>
+
+#include "app/args.h"
+#include "app/command.h"
+#include "app/scene_args.h"
+#include "app/segment_args.h"
+#include "core/error.h"
+#include "edit/colorize.h"
+#include "server/serve.h"
+
+namespace isegman::app {
+namespace {
+
+int run_serve(const std::vector<std::string>& argv) {
+  std::set<std::string> values = segment_value_flags(), switches = segment_switch_flags();
+  values.insert({"cameras", "images", "port", "host", "out-dir", "preview", "background", "max-seconds"});
+  switches.insert("no-segmentation");
+  Args args(argv, values, switches);
+  if (args.has("photos")) throw Error("--photos: the app segments renders (edits change what the photos show)");
+  SceneBundle bundle = load_scene_from_args(args);
+  SegmentSetup setup = parse_segment_setup(args);
+
+  server::ServeOptions o;
+  o.host = args.get("host", "127.0.0.1");
+  o.port = args.get_int("port", 8080);
+  if (o.port < 0 || o.port > 65535) throw Error("--port must be in [0, 65535] (0: any free port)");
+  o.max_seconds = args.get_double("max-seconds", 0);
+  if (!(o.max_seconds >= 0 && o.max_seconds <= 1e7)) throw Error("--max-seconds must be in [0, 1e7]");
+  o.app.out_dir = args.get("out-dir", "isegman-out");
+  o.app.sam_dir = setup.sam_dir;
+  o.app.segmentation = !args.has("no-segmentation");
+  o.app.session = setup.session;
+  o.app.views = setup.views;
+  if (!args.has("max-side")) o.app.views.max_side = 512;  // responsive rounds; SAM works at 1024 anyway
+  o.app.settings.tau = setup.session.tau;
+  o.app.settings.mode = setup.session.propagation.mode;
+  o.app.settings.inspection = setup.session.inspection;
+  o.app.settings.views_spec = args.has("views") ? setup.views_spec : "25%";
+  o.app.threads = setup.session.threads;
+  o.app.preview_side = args.get_int("preview", 640);
+  if (o.app.preview_side < 64 || o.app.preview_side > 4096) throw Error("--preview must be in [64, 4096]");
+  if (args.has("background")) {
+    const edit::Rgb bg = edit::parse_color(args.get("background"));
+    o.app.background[0] = float(bg.r);
+    o.app.background[1] = float(bg.g);
+    o.app.background[2] = float(bg.b);
+  }
+  if (o.host != "127.0.0.1" && o.host != "localhost" && o.host != "::1")
+    std::printf("warning: listening on %s: anyone who can reach it can edit the scene and write to %s\n",
+                o.host.c_str(), o.app.out_dir.c_str());
+  return server::serve_scene(bundle, o);
+}
+
+std::string usage() {
+  return std::string(
+             "usage: isegman serve <scene> [--port 8080] [--host 127.0.0.1] [--out-dir isegman-out]\n"
+             "                     [--preview 640] [--background COLOUR] [--no-segmentation] [--max-seconds S]\n"
+             "                     [--cameras FILE] [--images DIR] [segmentation options]\n"
+             "  Opens the scene in the interactive web app: click objects to select them in 3D, see the\n"
+             "  per-view evidence, edit (remove, colorize, scale, copy, combine) and export PLY/.splat.\n"
+             "  Exports written on the server go below --out-dir only. --port 0 picks a free port.\n"
+             "  Defaults differ from `segment`: --views 25%, --max-side 512.\n") +
+         kSegmentOptionsHelp;
+}
+
+RegisterCommand reg("serve", "interactive web app: click to segment, edit, export (local HTTP server)", usage(),
+                    run_serve);
+
+}  // namespace
+}  // namespace isegman::app

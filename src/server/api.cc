@@ -1,0 +1,232 @@
+#include "server/api.h"
+
+#include <httplib.h>
+
+#include <new>
+
+#include "core/error.h"
+#include "server/app_state.h"
+#include "server/http_error.h"
+#include "server/validation.h"
+#include "server/web_assets.h"
+
+using nlohmann::json;
+
+namespace isegman::server {
+
+namespace {
+
+void send_json(httplib::Response& res, const json& j, int status = 200) {
+  res.status = status;
+  res.set_header("Cache-Control", "no-store");
+  res.set_content(j.dump(), "application/json");
+}
+
+void send_error(httplib::Response& res, int status, const std::string& message) {
+  send_json(res, {{"error", message}, {"status", status}}, status);
+}
+
+// Runs a handler, turning every exception into an error response: the server never
+// dies on a request.
+template <typename Fn>
+httplib::Server::Handler guarded(Fn fn) {
+  return [fn](const httplib::Request& req, httplib::Response& res) {
+    try {
+      fn(req, res);
+    } catch (const HttpError& e) {
+      send_error(res, e.status(), e.what());
+    } catch (const Error& e) {
+      send_error(res, 400, e.what());
+    } catch (const json::exception& e) {
+      send_error(res, 400, std::string("bad JSON: ") + e.what());
+    } catch (const std::bad_alloc&) {
+      send_error(res, 503, "out of memory for this request");
+    } catch (const std::exception& e) {
+      send_error(res, 500, std::string("internal error: ") + e.what());
+    } catch (...) {
+      send_error(res, 500, "internal error");
+    }
+  };
+}
+
+std::string param(const httplib::Request& req, const std::string& name) {
+  if (req.get_param_value_count(name) > 1) bad_request(name + ": given more than once");
+  return req.get_param_value(name);
+}
+
+void check_params(const httplib::Request& req, std::initializer_list<const char*> allowed) {
+  for (const auto& [name, value] : req.params) {
+    bool ok = false;
+    for (const char* a : allowed) ok = ok || name == a;
+    if (!ok) bad_request("unknown parameter '" + name.substr(0, 40) + "'");
+  }
+}
+
+RenderRequest parse_render(const httplib::Request& req) {
+  check_params(req, {"view", "eye", "target", "up", "fov", "width", "height", "size", "highlight", "format", "bg", "t"});
+  RenderRequest r;
+  const bool has_view = req.has_param("view"), has_eye = req.has_param("eye");
+  if (has_view == has_eye) bad_request("give either view=K or a free camera (eye, target, up, fov, width, height)");
+  if (has_view) {
+    r.camera_index = parse_integer(param(req, "view"), "view", 0, 1 << 20);
+  } else {
+    FreeCameraSpec s;
+    s.eye = parse_vec3(param(req, "eye"), "eye", 1e7);
+    if (!req.has_param("target")) bad_request("missing parameter 'target'");
+    s.target = parse_vec3(param(req, "target"), "target", 1e7);
+    if (req.has_param("up")) s.up = parse_vec3(param(req, "up"), "up", 1e7);
+    if (req.has_param("fov")) s.fov_x_deg = parse_number(param(req, "fov"), "fov", 5, 150);
+    if (req.has_param("width")) s.width = parse_integer(param(req, "width"), "width", 16, 4096);
+    if (req.has_param("height")) s.height = parse_integer(param(req, "height"), "height", 16, 4096);
+    r.free = s;
+  }
+  if (req.has_param("size")) {
+    const std::string s = param(req, "size");
+    r.max_side = s == "full" ? 0 : parse_integer(s, "size", 32, 4096);
+  } else {
+    r.max_side = r.free ? 0 : 640;
+  }
+  if (req.has_param("highlight")) r.highlight = parse_flag(param(req, "highlight"), "highlight");
+  if (req.has_param("format")) {
+    const std::string f = param(req, "format");
+    if (f != "jpeg" && f != "png") bad_request("format: expected jpeg or png");
+    r.png = f == "png";
+  }
+  if (req.has_param("bg")) r.background = parse_rgb(param(req, "bg"), "bg");
+  return r;
+}
+
+ClickRecord parse_click(const json& body) {
+  ClickRecord c;
+  const bool has_view = body.contains("view") && !body["view"].is_null();
+  const bool has_camera = body.contains("camera") && !body["camera"].is_null();
+  if (has_view == has_camera) bad_request("give either 'view' (a camera index) or 'camera' (a free camera)");
+  if (has_view) {
+    c.camera_index = json_integer(body, "view", 0, 1 << 20);
+  } else {
+    c.free_camera = make_free_camera(free_camera_from_json(body["camera"]));
+  }
+  c.x = json_number(body, "x", 0, 1);
+  c.y = json_number(body, "y", 0, 1);
+  c.label = json_integer(body, "label", 0, 1, 1);
+  return c;
+}
+
+SegmentSettings parse_settings(const json& body, const SegmentSettings& current) {
+  SegmentSettings s = current;
+  s.tau = json_number(body, "tau", 0, 0.999, current.tau);
+  s.views_spec = json_string(body, "views", 256, current.views_spec);
+  if (s.views_spec.empty()) bad_request("views: empty");
+  const std::string mode = json_string(body, "mode", 16, std::string(segment::mode_name(current.mode)));
+  if (mode != "hybrid" && mode != "epipolar" && mode != "depth") bad_request("mode: expected hybrid, epipolar or depth");
+  s.mode = segment::parse_mode(mode);
+  s.inspection = json_bool(body, "inspection", current.inspection);
+  return s;
+}
+
+SegmentSettings current_settings(const AppState& app) {
+  const json st = app.status()["segmentation"]["settings"];
+  SegmentSettings s;
+  s.tau = st["tau"].get<double>();
+  s.views_spec = st["views"].get<std::string>();
+  s.mode = segment::parse_mode(st["mode"].get<std::string>());
+  s.inspection = st["inspection"].get<bool>();
+  return s;
+}
+
+void serve_asset(const std::string& path, httplib::Response& res) {
+  const WebAsset* a = find_web_asset(path);
+  if (!a) throw HttpError(404, "no such page: " + path.substr(0, 100));
+  res.set_header("Cache-Control", "no-cache");
+  res.set_content(a->data, a->size, mime_type_for(path).c_str());
+}
+
+}  // namespace
+
+void register_routes(httplib::Server& server, AppState& app) {
+  server.Get("/", guarded([](const httplib::Request&, httplib::Response& res) { serve_asset("/index.html", res); }));
+  for (const WebAsset& a : web_assets()) {
+    const std::string path = a.path;
+    server.Get(path, guarded([path](const httplib::Request&, httplib::Response& res) { serve_asset(path, res); }));
+  }
+
+  server.Get("/api/scene", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, app.scene_info());
+  }));
+  server.Get("/api/status", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, app.status());
+  }));
+  server.Get("/api/render", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    const RenderRequest r = parse_render(req);
+    const std::vector<uint8_t> bytes = app.render(r);
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), r.png ? "image/png" : "image/jpeg");
+  }));
+  server.Get("/api/thumb", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    check_params(req, {"index", "v"});
+    if (!req.has_param("index")) bad_request("missing parameter 'index'");
+    const std::vector<uint8_t> bytes = app.thumbnail(parse_integer(param(req, "index"), "index", 0, 1 << 20));
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), "image/jpeg");
+  }));
+  server.Get("/api/selection/bounds", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, app.selection_bounds());
+  }));
+  server.Get("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    check_params(req, {"format"});
+    const std::string f = req.has_param("format") ? param(req, "format") : "ply";
+    if (f != "ply" && f != "splat") bad_request("format: expected ply or splat");
+    const std::vector<uint8_t> bytes = app.export_bytes(f == "ply" ? edit::SceneFormat::kPly : edit::SceneFormat::kSplat);
+    res.set_header("Content-Disposition", "attachment; filename=\"edited." + f + "\"");
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), "application/octet-stream");
+  }));
+  server.Get(R"(/api/jobs/(\d{1,18}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    const JobStatus s = app.jobs().find(std::stoull(req.matches[1].str()));
+    if (s.state.empty()) throw HttpError(404, "no job " + req.matches[1].str());
+    send_json(res, {{"id", s.id}, {"name", s.name}, {"state", s.state}, {"done", s.done}, {"total", s.total},
+                    {"message", s.message}, {"error", s.error}, {"seconds", s.seconds}});
+  }));
+
+  server.Post("/api/click", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    const uint64_t id = app.click(parse_click(parse_body(req.body)));
+    send_json(res, {{"job", id}}, 202);
+  }));
+  server.Post("/api/click/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, {{"job", app.undo_click()}}, 202);
+  }));
+  server.Post("/api/click/redo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, {{"job", app.redo_click()}}, 202);
+  }));
+  server.Post("/api/settings", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    const json body = parse_body(req.body);
+    send_json(res, {{"job", app.set_settings(parse_settings(body, current_settings(app)))}}, 202);
+  }));
+  server.Post(R"(/api/select/([a-z]{1,16}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    const json body = req.body.empty() ? json::object() : parse_body(req.body);
+    send_json(res, app.select(req.matches[1].str(), body));
+  }));
+  server.Post("/api/edit/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, app.undo_edit());
+  }));
+  server.Post("/api/edit/redo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, app.redo_edit());
+  }));
+  server.Post(R"(/api/edit/([a-z]{1,16}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    const json body = req.body.empty() ? json::object() : parse_body(req.body);
+    send_json(res, app.edit(req.matches[1].str(), body));
+  }));
+  server.Post("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    const json body = parse_body(req.body);
+    send_json(res, app.export_to(json_string(body, "path", 200)));
+  }));
+
+  server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
+    if (!res.body.empty()) return;
+    const std::string what = res.status == 404 ? "no such endpoint: " + req.method + " " + req.path.substr(0, 100)
+                                               : "request failed";
+    send_error(res, res.status, what);
+  });
+}
+
+}  // namespace isegman::server

@@ -1,0 +1,21 @@
+# cmake -P embed_assets.cmake -DOUT=<file.cc> -DBASE=<dir> -DFILES=<a;b;...>
+# Writes a C++ source holding every file's bytes, so the binary serves the page without
+# the source tree.
+set(body "// Generated from web/ by src/server/embed_assets.cmake. Do not edit.\n#include \"server/web_assets.h\"\n\nnamespace isegman::server {\nnamespace {\n")
+set(table "")
+set(i 0)
+string(REPLACE "|" ";" FILES "${FILES}")
+foreach(rel IN LISTS FILES)
+  file(READ "${BASE}/${rel}" hex HEX)
+  string(LENGTH "${hex}" n)
+  math(EXPR bytes "${n} / 2")
+  string(REGEX REPLACE "([0-9a-f][0-9a-f])" "0x\\1," hex "${hex}")
+  string(REGEX REPLACE "((0x..,){24})" "\\1\n" hex "${hex}")
+  string(APPEND body "const unsigned char f${i}[] = {\n${hex}0};\n")
+  string(APPEND table "    {\"/${rel}\", reinterpret_cast<const char*>(f${i}), ${bytes}},\n")
+  math(EXPR i "${i} + 1")
+endforeach()
+string(APPEND body "}  // namespace\n\nconst std::vector<WebAsset>& web_assets() {\n  static const std::vector<WebAsset> assets = {\n${table}  };\n  return assets;\n}\n\n}  // namespace isegman::server\n")
+file(WRITE "${OUT}.tmp" "${body}")
+file(COPY_FILE "${OUT}.tmp" "${OUT}" ONLY_IF_DIFFERENT)
+file(REMOVE "${OUT}.tmp")

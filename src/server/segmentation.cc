@@ -1,0 +1,200 @@
+#include "server/segmentation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "io/image_io.h"
+#include "segment/overlay.h"
+#include "segment/views.h"
+#include "server/http_error.h"
+
+namespace isegman::server {
+
+namespace {
+
+bool same_camera(const Camera& a, const Camera& b) {
+  if (a.width != b.width || a.height != b.height || a.fx != b.fx || a.fy != b.fy || a.cx != b.cx || a.cy != b.cy)
+    return false;
+  for (int i = 0; i < 3; ++i) {
+    if (a.t[i] != b.t[i]) return false;
+    for (int j = 0; j < 3; ++j)
+      if (a.R.m[i][j] != b.R.m[i][j]) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+Segmentation::Segmentation(std::shared_ptr<const models::SamModel> sam, segment::SessionOptions session_options,
+                           segment::ViewOptions view_options, SegmentSettings settings)
+    : sam_(std::move(sam)), base_session_(session_options), view_options_(view_options), settings_(settings) {
+  view_options_.use_photos = false;  // edits change the scene: segment what is rendered
+}
+
+segment::SessionOptions Segmentation::session_options() const {
+  segment::SessionOptions o = base_session_;
+  o.tau = settings_.tau;
+  o.propagation.mode = settings_.mode;
+  o.inspection = settings_.inspection;
+  return o;
+}
+
+void Segmentation::open(std::shared_ptr<const SceneBundle> snapshot, uint64_t fingerprint, const Progress& progress) {
+  session_.reset();
+  snapshot_ = std::move(snapshot);
+  fingerprint_ = fingerprint;
+  log_.clear();
+  redo_.clear();
+  rebuild(progress);
+}
+
+void Segmentation::rebuild(const Progress& progress) {
+  session_.reset();
+  free_views_.clear();
+  std::vector<int> chosen = segment::sample_views(snapshot_->cameras, settings_.views_spec);
+  // Cameras the logged clicks were made in are always views.
+  for (const ClickRecord& c : log_)
+    if (c.camera_index >= 0 && std::find(chosen.begin(), chosen.end(), c.camera_index) == chosen.end())
+      chosen.push_back(c.camera_index);
+  const int total = int(chosen.size()) + int(log_.size());
+  int done = 0;
+  std::vector<segment::SegmentView> views =
+      segment::build_views(*snapshot_, chosen, *sam_, view_options_, [&](const std::string& line) {
+        ++done;
+        if (progress) progress(done, total, line);
+      });
+  session_ = std::make_unique<segment::Session>(snapshot_->gaussians, std::move(views), sam_, session_options());
+  free_views_.assign(session_->views().size(), std::nullopt);
+  std::vector<ClickRecord> replay = std::move(log_);
+  log_.clear();
+  for (const ClickRecord& c : replay) {
+    click(c, nullptr);
+    ++done;
+    if (progress) progress(done, total, "replayed click " + std::to_string(log_.size()));
+  }
+}
+
+int Segmentation::view_for(const ClickRecord& c, const Progress& progress) {
+  const auto& views = session_->views();
+  if (c.camera_index >= 0) {
+    for (size_t k = 0; k < views.size(); ++k)
+      if (views[k].camera_index == c.camera_index) return int(k);
+    if (c.camera_index >= int(snapshot_->cameras.size())) throw HttpError(400, "view: no camera " + std::to_string(c.camera_index));
+    if (progress) progress(0, 1, "adding view " + snapshot_->cameras[size_t(c.camera_index)].name);
+    const int k = session_->add_view(segment::build_view(snapshot_->gaussians, snapshot_->cameras[size_t(c.camera_index)],
+                                                         c.camera_index, *sam_, view_options_));
+    free_views_.resize(session_->views().size());
+    return k;
+  }
+  if (!c.free_camera) throw HttpError(400, "click: neither a view nor a free camera");
+  for (size_t k = 0; k < free_views_.size(); ++k)
+    if (free_views_[k] && same_camera(*free_views_[k], *c.free_camera)) return int(k);
+  if (progress) progress(0, 1, "computing the free camera's view (render + SAM embedding)");
+  const int k = session_->add_view(segment::build_view(snapshot_->gaussians, *c.free_camera, -1, *sam_, view_options_));
+  free_views_.resize(session_->views().size());
+  free_views_[size_t(k)] = *c.free_camera;
+  return k;
+}
+
+segment::RoundReport Segmentation::click(const ClickRecord& c, const Progress& progress) {
+  if (!session_) throw HttpError(409, "segmentation is not ready");
+  if (!(c.x >= 0 && c.x <= 1 && c.y >= 0 && c.y <= 1)) throw HttpError(400, "click: x and y must be in [0, 1]");
+  const int k = view_for(c, progress);
+  const Camera& work = session_->views()[size_t(k)].camera;
+  segment::ViewClick vc;
+  vc.u = std::min(c.x * work.width, work.width - 1e-3);
+  vc.v = std::min(c.y * work.height, work.height - 1e-3);
+  vc.label = c.label;
+  if (progress) progress(0, 1, "segmenting: propagation, SAM, inspection, voting");
+  segment::RoundReport r = session_->click(k, vc);
+  log_.push_back(c);
+  return r;
+}
+
+void Segmentation::undo() {
+  if (!session_ || log_.empty() || !session_->undo()) throw HttpError(409, "no click to undo");
+  redo_.push_back(log_.back());
+  log_.pop_back();
+}
+
+void Segmentation::redo(const Progress& progress) {
+  if (redo_.empty()) throw HttpError(409, "no click to redo");
+  ClickRecord c = redo_.back();
+  redo_.pop_back();
+  std::vector<ClickRecord> keep = std::move(redo_);
+  click(c, progress);
+  redo_ = std::move(keep);
+}
+
+void Segmentation::reconfigure(const SegmentSettings& s, const Progress& progress) {
+  if (!snapshot_) throw HttpError(409, "segmentation is not ready");
+  // Validate the view spec before dropping anything.
+  segment::sample_views(snapshot_->cameras, s.views_spec);
+  settings_ = s;
+  redo_.clear();
+  rebuild(progress);
+}
+
+const std::vector<bool>& Segmentation::selection() const {
+  static const std::vector<bool> none;
+  return session_ ? session_->selection() : none;
+}
+
+size_t Segmentation::selected_count() const {
+  const auto& s = selection();
+  return size_t(std::count(s.begin(), s.end(), true));
+}
+
+size_t Segmentation::view_count() const { return session_ ? session_->views().size() : 0; }
+
+nlohmann::json Segmentation::views_json() const {
+  nlohmann::json out = nlohmann::json::array();
+  if (!session_) return out;
+  const auto& views = session_->views();
+  const auto& states = session_->view_states();
+  for (size_t k = 0; k < views.size(); ++k) {
+    const segment::ViewState& st = states[k];
+    int pos = 0, neg = 0;
+    for (const auto& c : st.clicks) (c.label ? pos : neg)++;
+    const char* status = "idle";
+    switch (st.status) {
+      case segment::ViewStatus::Accepted: status = "accepted"; break;
+      case segment::ViewStatus::NoClicks: status = "no-clicks"; break;
+      case segment::ViewStatus::EmptyMask: status = "empty-mask"; break;
+      case segment::ViewStatus::NoOverlap: status = "dropped"; break;
+      case segment::ViewStatus::Skipped: status = "skipped"; break;
+    }
+    out.push_back({{"index", k},
+                   {"name", views[k].name},
+                   {"camera", views[k].camera_index},
+                   {"status", status},
+                   {"status_text", segment::status_name(st.status)},
+                   {"positive", pos},
+                   {"negative", neg},
+                   {"not_sent", st.not_sent.size()},
+                   {"not_sent_reason", st.not_sent.empty() ? "" : st.not_sent.front()},
+                   {"mask_pixels", st.mask_pixels},
+                   {"sam_score", st.sam_score},
+                   {"overlap", st.overlap}});
+  }
+  return out;
+}
+
+std::vector<std::vector<uint8_t>> Segmentation::thumbnails(int side) const {
+  std::vector<std::vector<uint8_t>> out;
+  if (!session_) return out;
+  const auto& views = session_->views();
+  for (size_t k = 0; k < views.size(); ++k) {
+    const bool any = selected_count() > 0;
+    Image overlay = segment::make_overlay(views[k].rgb, session_->view_states()[k],
+                                          any ? session_->selection_coverage(int(k)) : Image());
+    const double s = double(side) / std::max(overlay.width, overlay.height);
+    if (s < 1)
+      overlay = resize_image(overlay, std::max(1, int(std::lround(overlay.width * s))),
+                             std::max(1, int(std::lround(overlay.height * s))));
+    out.push_back(encode_jpeg(overlay, 85));
+  }
+  return out;
+}
+
+}  // namespace isegman::server

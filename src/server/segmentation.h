@@ -1,0 +1,88 @@
+// The app's segmentation: a segment::Session over a snapshot of the scene, the log of
+// the user's clicks (for redo and for re-running them under new settings) and the
+// free-camera views added by clicks outside the training cameras.
+//
+// The session works on the snapshot it was opened on; the app re-opens it when the
+// edited scene no longer matches (its fingerprint differs), so the selection indices
+// always refer to the scene being edited. Not thread-safe: the app serialises access.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/scene.h"
+#include "models/sam.h"
+#include "segment/session.h"
+
+namespace isegman::server {
+
+struct SegmentSettings {
+  double tau = 0.8;
+  std::string views_spec = "50%";
+  segment::PropagationMode mode = segment::PropagationMode::Hybrid;
+  bool inspection = true;
+};
+
+// A user click: in a training camera (camera_index >= 0) or a free camera; position in
+// [0, 1] x [0, 1] of the image (x right, y down); label 1 positive, 0 negative.
+struct ClickRecord {
+  int camera_index = -1;
+  std::optional<Camera> free_camera;
+  double x = 0, y = 0;
+  int label = 1;
+};
+
+class Segmentation {
+ public:
+  using Progress = std::function<void(int done, int total, const std::string& message)>;
+
+  Segmentation(std::shared_ptr<const models::SamModel> sam, segment::SessionOptions session_options,
+               segment::ViewOptions view_options, SegmentSettings settings);
+
+  // Builds the sampled views of `snapshot` (embeddings from the cache when present)
+  // and opens an empty session; the click log is cleared.
+  void open(std::shared_ptr<const SceneBundle> snapshot, uint64_t fingerprint, const Progress& progress);
+  bool is_open() const { return session_ != nullptr; }
+  uint64_t fingerprint() const { return fingerprint_; }
+
+  // One round for a click; adds the free camera's view first when needed. Clears redo.
+  segment::RoundReport click(const ClickRecord& click, const Progress& progress);
+  bool can_undo() const { return !log_.empty(); }
+  bool can_redo() const { return !redo_.empty(); }
+  void undo();                              // throws HttpError(409) when nothing to undo
+  void redo(const Progress& progress);      // re-runs the undone click
+  // New settings: rebuilds the views and replays the clicks (embeddings cached).
+  void reconfigure(const SegmentSettings& settings, const Progress& progress);
+  const SegmentSettings& settings() const { return settings_; }
+
+  const std::vector<bool>& selection() const;
+  size_t selected_count() const;
+  const std::vector<ClickRecord>& clicks() const { return log_; }
+  // Per view: name, camera, clicks, mask size, inspection status.
+  nlohmann::json views_json() const;
+  // Evidence thumbnail of every view (JPEG, longest side `side`).
+  std::vector<std::vector<uint8_t>> thumbnails(int side) const;
+  size_t view_count() const;
+
+ private:
+  int view_for(const ClickRecord& click, const Progress& progress);
+  void rebuild(const Progress& progress);
+  segment::SessionOptions session_options() const;
+
+  std::shared_ptr<const models::SamModel> sam_;
+  segment::SessionOptions base_session_;
+  segment::ViewOptions view_options_;
+  SegmentSettings settings_;
+  std::shared_ptr<const SceneBundle> snapshot_;
+  uint64_t fingerprint_ = 0;
+  std::unique_ptr<segment::Session> session_;
+  std::vector<ClickRecord> log_, redo_;
+  std::vector<std::optional<Camera>> free_views_;  // per session view: its free camera
+};
+
+}  // namespace isegman::server

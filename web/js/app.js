@@ -1,0 +1,211 @@
+// isegman web app: wires the view, the evidence strip and the panel to the server and
+// keeps them in sync with /api/status.
+import * as api from './api.js';
+import { Viewer } from './viewer.js';
+import { Strip } from './strip.js';
+import { Panels } from './panels.js';
+
+const $ = (id) => document.getElementById(id);
+let scene = null, viewer = null, strip = null, panels = null;
+let status = null, lastRevision = -1, lastLogSeq = 0, pollTimer = null;
+let marks = [], redoMarks = [];
+let toastTimer = null;
+
+function toast(text, ok = false) {
+  const t = $('toast');
+  t.textContent = text;
+  t.className = `toast${ok ? ' ok' : ''}`;
+  clearTimeout(toastTimer);
+  toastTimer = setTimeout(() => t.classList.add('hidden'), ok ? 3000 : 7000);
+}
+function showError(message) { toast(message); document.body.dataset.lastError = message; }
+
+async function run(fn) {
+  try {
+    const msg = await fn();
+    if (typeof msg === 'string') toast(msg, true);
+  } catch (e) {
+    showError(e.message || String(e));
+  } finally {
+    poll(true);
+  }
+}
+
+async function runJob(what, start, kind) {
+  try {
+    const { job } = await start();
+    poll(true);
+    await api.waitJob(job);
+    if (kind === 'undo') { const m = marks.pop(); if (m) redoMarks.push(m); }
+    if (kind === 'redo') { const m = redoMarks.pop(); if (m) marks.push(m); }
+    viewer.setMarks(marks);
+    return true;
+  } catch (e) {
+    showError(`${what}: ${e.message || e}`);
+    return false;
+  } finally {
+    poll(true);
+  }
+}
+
+async function click(target) {
+  const body = { x: target.x, y: target.y, label: target.label };
+  if (target.view !== undefined) body.view = target.view; else body.camera = target.camera;
+  const mark = { key: target.key, x: target.x, y: target.y, label: target.label };
+  marks.push(mark); redoMarks = [];
+  viewer.setMarks(marks);
+  const ok = await runJob('segmenting', () => api.post('/api/click', body));
+  if (!ok) { marks = marks.filter((m) => m !== mark); viewer.setMarks(marks); }
+}
+
+function setBanner(kind, text, progress) {
+  const b = $('banner');
+  if (!kind) { b.classList.add('hidden'); return; }
+  b.className = `banner ${kind}`;
+  $('banner-text').textContent = text;
+  const bar = $('banner-bar');
+  bar.parentElement.style.display = progress === undefined ? 'none' : '';
+  if (progress !== undefined) bar.style.width = `${Math.round(progress * 100)}%`;
+}
+
+function render(s) {
+  const seg = s.segmentation, ed = s.edit, job = s.job;
+  document.body.dataset.seg = seg.state;
+  document.body.dataset.busy = String(s.busy);
+  document.body.dataset.selected = String(ed.selected);
+  document.body.dataset.gaussians = String(ed.gaussians);
+  document.body.dataset.clicks = String(seg.clicks);
+  $('scene-stats').textContent = `${ed.gaussians.toLocaleString()} Gaussians · ${scene.cameras.length} cameras`;
+  $('click-count').textContent = seg.clicks;
+  $('selected-count').textContent = ed.selected.toLocaleString();
+  const tag = $('seg-state');
+  tag.textContent = seg.stale ? 'scene edited' : seg.state;
+  tag.className = `tag ${seg.state}`;
+  tag.title = seg.message;
+
+  const pill = $('status-pill');
+  const running = job.state === 'running' || job.state === 'queued';
+  if (s.busy && running) {
+    const frac = job.total > 0 ? ` ${job.done}/${job.total}` : '';
+    pill.textContent = `computing: ${job.name}${frac}${s.queued ? ` (+${s.queued} queued)` : ''}`;
+    pill.className = 'pill busy';
+    const msg = job.message ? ` — ${job.message}` : '';
+    setBanner('busy', `${job.name[0].toUpperCase()}${job.name.slice(1)}${msg}`, job.total > 0 ? job.done / job.total : undefined);
+  } else if (seg.state === 'off' || seg.state === 'error') {
+    pill.textContent = seg.state === 'off' ? 'segmentation off' : 'segmentation error';
+    pill.className = 'pill err';
+    pill.title = seg.message;
+    setBanner('info', seg.message);
+  } else {
+    pill.textContent = `ready · ${ed.selected.toLocaleString()} selected`;
+    pill.className = 'pill ok';
+    if (ed.selected === 0) setBanner('info', seg.stale ? 'Scene edited — click an object to segment the edited scene'
+      : 'No selection — left-click an object to select it (right-click or shift-click to subtract)');
+    else setBanner(null);
+  }
+  if (!s.busy && seg.clicks < marks.length) { marks = marks.slice(0, seg.clicks); viewer.setMarks(marks); }
+  if (!s.busy && seg.clicks === 0 && marks.length) { marks = []; viewer.setMarks(marks); }
+
+  strip.update(seg, viewer.free ? -1 : viewer.cameraIndex);
+  panels.update(s);
+  if (ed.revision !== lastRevision) {
+    lastRevision = ed.revision;
+    viewer.render();
+  }
+  const log = $('log');
+  for (const e of [...s.log].reverse()) {
+    if (e.seq <= lastLogSeq) continue;
+    lastLogSeq = e.seq;
+    const li = document.createElement('li');
+    li.className = e.level;
+    const t = document.createElement('time');
+    t.textContent = new Date(e.time * 1000).toLocaleTimeString();
+    li.append(t, document.createTextNode(e.text));
+    log.prepend(li);
+    while (log.children.length > 60) log.lastChild.remove();
+  }
+}
+
+async function poll(now = false) {
+  clearTimeout(pollTimer);
+  try {
+    status = await api.get('/api/status');
+    render(status);
+  } catch (e) {
+    $('status-pill').textContent = `server unreachable: ${e.message}`;
+    $('status-pill').className = 'pill err';
+  }
+  pollTimer = setTimeout(poll, status && status.busy ? 300 : 1200);
+}
+
+function populateCameras() {
+  const sel = $('camera-select');
+  scene.cameras.forEach((c, i) => sel.add(new Option(`${i}: ${c.name}`, String(i))));
+  sel.addEventListener('change', () => viewer.setCamera(Number(sel.value)));
+  const step = (d) => {
+    const n = scene.cameras.length;
+    const i = viewer.free ? viewer.cameraIndex : (viewer.cameraIndex + d + n) % n;
+    sel.value = String(i);
+    viewer.setCamera(i);
+  };
+  $('btn-prev').addEventListener('click', () => step(-1));
+  $('btn-next').addEventListener('click', () => step(1));
+  $('btn-orbit').addEventListener('click', () => viewer.setFree(!viewer.free));
+  $('btn-hd').addEventListener('click', () => viewer.render('full'));
+  return step;
+}
+
+function bindKeys(step) {
+  document.addEventListener('keydown', (e) => {
+    const tag = (e.target.tagName || '').toLowerCase();
+    if (tag === 'input' || tag === 'select' || tag === 'textarea') return;
+    const k = e.key;
+    const ctrl = e.ctrlKey || e.metaKey;
+    let handled = true;
+    if (ctrl && (k === 'z' || k === 'Z')) (e.shiftKey ? panels.redoEdit() : panels.undoEdit());
+    else if (ctrl && (k === 'y' || k === 'Y')) panels.redoEdit();
+    else if (ctrl) handled = false;
+    else if (k === 'z') panels.undoClick();
+    else if (k === 'Z') panels.redoClick();
+    else if (k === 'ArrowLeft') step(-1);
+    else if (k === 'ArrowRight') step(1);
+    else if (k === 'o' || k === 'O') viewer.setFree(!viewer.free);
+    else if (k === 'h' || k === 'H') viewer.render('full');
+    else if (k === 'Delete' || k === 'Backspace') { if (status && status.edit.selected > 0) panels.edit('remove'); }
+    else if (k === 'i' || k === 'I') panels.select('invert');
+    else if (k === 'Escape') { if (!$('help').classList.contains('hidden')) $('help').classList.add('hidden'); else panels.select('clear'); }
+    else if (k === 'c' || k === 'C') { if (status && status.edit.selected > 0) panels.edit('copy', panels.transform()); }
+    else if (k === '?') $('help').classList.toggle('hidden');
+    else handled = false;
+    if (handled) e.preventDefault();
+  });
+  $('btn-help').addEventListener('click', () => $('help').classList.remove('hidden'));
+  $('btn-help-close').addEventListener('click', () => $('help').classList.add('hidden'));
+}
+
+async function main() {
+  try {
+    scene = await api.get('/api/scene');
+  } catch (e) {
+    $('status-pill').textContent = `cannot load the scene: ${e.message}`;
+    $('status-pill').className = 'pill err';
+    return;
+  }
+  document.title = `isegman · ${scene.name}`;
+  $('scene-name').textContent = scene.name;
+  $('out-dir').textContent = `server folder: ${scene.out_dir}`;
+  viewer = new Viewer({
+    stage: $('stage'), frame: $('frame'), img: $('view-img'), canvas: $('view-marks'), caption: $('view-caption'), scene,
+    onClick: click, onError: showError,
+    onModeChange: () => { $('btn-orbit').classList.toggle('on', viewer.free); if (status) strip.update(status.segmentation, viewer.free ? -1 : viewer.cameraIndex); },
+  });
+  strip = new Strip($('strip'), (cam) => { $('camera-select').value = String(cam); viewer.setCamera(cam); });
+  panels = new Panels({ api, run, runJob, scene });
+  const step = populateCameras();
+  bindKeys(step);
+  viewer.fit();
+  viewer.render();
+  poll();
+}
+
+main();

@@ -1,0 +1,109 @@
+// The right-hand panel: segmentation settings, selection helpers, the toolbox, history
+// and export. Every action goes through `run`, which shows errors and refreshes state.
+const $ = (id) => document.getElementById(id);
+const vec = (name) => [...document.querySelectorAll(`[data-vec="${name}"] input`)];
+const readVec = (name) => vec(name).map((i) => Number(i.value));
+const writeVec = (name, v) => vec(name).forEach((i, k) => { i.value = Number(v[k].toPrecision(5)); });
+
+export function scaleFactor() { return Math.exp(Number($('scale').value)); }
+
+export class Panels {
+  constructor({ api, run, runJob, scene }) {
+    Object.assign(this, { api, run, runJob, scene });
+    this.selMode = 'replace';
+    this.bind();
+  }
+
+  transform() {
+    return { translate: readVec('tr'), rotate: readVec('rot'), scale: Number($('tr-scale').value) };
+  }
+
+  bind() {
+    const { api, run, runJob } = this;
+    $('tau').addEventListener('input', () => { $('tau-out').textContent = Number($('tau').value).toFixed(2); });
+    $('btn-settings').addEventListener('click', () => runJob('applying settings', () => api.post('/api/settings', {
+      tau: Number($('tau').value), views: $('views').value, mode: $('mode').value, inspection: $('inspection').checked })));
+    $('btn-undo-click').addEventListener('click', () => this.undoClick());
+    $('btn-redo-click').addEventListener('click', () => this.redoClick());
+
+    for (const b of document.querySelectorAll('#sel-mode button')) {
+      b.addEventListener('click', () => {
+        this.selMode = b.dataset.mode;
+        for (const o of document.querySelectorAll('#sel-mode button')) o.classList.toggle('on', o === b);
+      });
+    }
+    $('btn-fit').addEventListener('click', () => run(async () => {
+      const b = await api.get('/api/selection/bounds');
+      writeVec('box-lo', b.lo); writeVec('box-hi', b.hi); writeVec('sph-c', b.center);
+      $('sph-r').value = Number(b.radius.toPrecision(5));
+      return null;
+    }));
+    $('btn-box').addEventListener('click', () => run(() => api.post('/api/select/box', { lo: readVec('box-lo'), hi: readVec('box-hi'), mode: this.selMode })));
+    $('btn-sphere').addEventListener('click', () => run(() => api.post('/api/select/sphere', {
+      center: readVec('sph-c'), radius: Number($('sph-r').value), mode: this.selMode })));
+    $('btn-invert').addEventListener('click', () => this.select('invert'));
+    $('btn-clear').addEventListener('click', () => this.select('clear'));
+    $('btn-all').addEventListener('click', () => this.select('all'));
+
+    $('btn-remove').addEventListener('click', () => this.edit('remove'));
+    $('btn-colorize').addEventListener('click', () => this.edit('colorize', { color: $('color').value, mode: $('color-mode').value }));
+    $('scale').addEventListener('input', () => { $('scale-out').textContent = `×${scaleFactor().toFixed(2)}`; });
+    $('btn-scale').addEventListener('click', () => this.edit('scale', { factor: Number(scaleFactor().toFixed(4)) }));
+    $('btn-copy').addEventListener('click', () => this.edit('copy', this.transform()));
+    $('btn-move').addEventListener('click', () => this.edit('move', this.transform()));
+    $('btn-combine').addEventListener('click', () => this.edit('combine', { path: $('combine-path').value.trim(), ...this.transform() }));
+    $('btn-undo-edit').addEventListener('click', () => this.undoEdit());
+    $('btn-redo-edit').addEventListener('click', () => this.redoEdit());
+
+    $('btn-download-ply').addEventListener('click', () => this.download('ply'));
+    $('btn-download-splat').addEventListener('click', () => this.download('splat'));
+    $('btn-save').addEventListener('click', () => run(async () => {
+      const r = await api.post('/api/export', { path: $('export-path').value.trim() });
+      return `saved ${r.gaussians.toLocaleString()} Gaussians to ${r.path}` + (r.notes.length ? ` (${r.notes.join('; ')})` : '');
+    }));
+    $('scale-out').textContent = `×${scaleFactor().toFixed(2)}`;
+  }
+
+  select(tool) { return this.run(() => this.api.post(`/api/select/${tool}`, { mode: this.selMode })); }
+  edit(op, body = {}) {
+    return this.run(async () => {
+      const r = await this.api.post(`/api/edit/${op}`, body);
+      return r.label + (r.notes && r.notes.length ? ` (${r.notes.join('; ')})` : '');
+    });
+  }
+  undoEdit() { return this.run(async () => `undo: ${(await this.api.post('/api/edit/undo')).label}`); }
+  redoEdit() { return this.run(async () => `redo: ${(await this.api.post('/api/edit/redo')).label}`); }
+  undoClick() { return this.runJob('undoing the click', () => this.api.post('/api/click/undo'), 'undo'); }
+  redoClick() { return this.runJob('redoing the click', () => this.api.post('/api/click/redo'), 'redo'); }
+
+  download(format) {
+    const a = document.createElement('a');
+    a.href = `/api/export?format=${format}`;
+    a.download = `${this.scene.name || 'scene'}-edited.${format}`;
+    document.body.append(a); a.click(); a.remove();
+  }
+
+  // Enables the controls that make sense in the current state.
+  update(status) {
+    const seg = status.segmentation, ed = status.edit;
+    const segReady = seg.state === 'ready';
+    const has = ed.selected > 0;
+    $('btn-undo-click').disabled = !seg.can_undo;
+    $('btn-redo-click').disabled = !seg.can_redo;
+    $('btn-settings').disabled = !(segReady || seg.state === 'preparing');
+    for (const id of ['btn-remove', 'btn-colorize', 'btn-scale', 'btn-copy', 'btn-move']) $(id).disabled = !has;
+    $('btn-invert').disabled = false;
+    $('btn-undo-edit').disabled = !ed.can_undo;
+    $('btn-redo-edit').disabled = !ed.can_redo;
+    $('history-info').textContent = `${ed.undo_steps} step(s) · ${ed.redo_steps} to redo`;
+    if (!this.settingsShown && seg.settings) {
+      this.settingsShown = true;
+      $('tau').value = seg.settings.tau; $('tau-out').textContent = Number(seg.settings.tau).toFixed(2);
+      const v = $('views');
+      if (![...v.options].some((o) => o.value === seg.settings.views)) v.add(new Option(seg.settings.views, seg.settings.views));
+      v.value = seg.settings.views;
+      $('mode').value = seg.settings.mode;
+      $('inspection').checked = seg.settings.inspection;
+    }
+  }
+}
