@@ -7,6 +7,7 @@
 
 #include "app/args.h"
 #include "app/command.h"
+#include "app/demo_edits.h"
 #include "app/demo_scene.h"
 #include "core/error.h"
 #include "io/image_io.h"
@@ -119,6 +120,8 @@ int run_demo(const std::vector<std::string>& argv) {
 #ifdef ISEGMAN_HAVE_SEGMENT
   const std::vector<bool> selection = demo_segmentation(demo, 0, fs::path(out), s.threads);
 #endif
+  std::printf("editing: box-select the blue cylinder, then remove / recolour / scale / copy it\n");
+  run_edit_demo(demo, (fs::path(out) / "edits").string());
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("demo finished in %.2f s; try: isegman info %s\n", secs, scene_dir.c_str());
   return 0;
