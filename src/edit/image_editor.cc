@@ -39,6 +39,12 @@ Image fit_to(const Image& edited, const Image& input) {
   return resize_image(edited, input.width, input.height);
 }
 
+std::string seconds_text(double s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", s);
+  return buf;
+}
+
 float luminance(float r, float g, float b) { return 0.299f * r + 0.587f * g + 0.114f * b; }
 
 // ---------------------------------------------------------------------------------------
@@ -182,7 +188,7 @@ class CommandEditor : public ImageEditor {
         kill(-pid, SIGKILL);
         kill(pid, SIGKILL);
         waitpid(pid, &status, 0);
-        throw Error(who, "timed out after " + std::to_string(timeout_) + " s (raise --editor-timeout)");
+        throw Error(who, "timed out after " + seconds_text(timeout_) + " s (raise --editor-timeout)");
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
@@ -381,7 +387,7 @@ class HttpEditor : public ImageEditor {
       if (pr <= 0) {
         close(s);
         freeaddrinfo(res);
-        throw Error(who, "timed out connecting after " + std::to_string(timeout_) + " s");
+        throw Error(who, "timed out connecting after " + seconds_text(timeout_) + " s");
       }
       getsockopt(s, SOL_SOCKET, SO_ERROR, &err, &len);
       if (err != 0) {
@@ -398,7 +404,7 @@ class HttpEditor : public ImageEditor {
     while (sent < request.size()) {
       pollfd p{fd, POLLOUT, 0};
       if (poll(&p, 1, remaining_ms(deadline)) <= 0)
-        throw Error(who, "timed out sending the request after " + std::to_string(timeout_) + " s");
+        throw Error(who, "timed out sending the request after " + seconds_text(timeout_) + " s");
       const ssize_t n = send(fd, request.data() + sent, request.size() - sent, MSG_NOSIGNAL);
       if (n < 0) {
         if (errno == EAGAIN || errno == EINTR) continue;
@@ -412,7 +418,7 @@ class HttpEditor : public ImageEditor {
       pollfd p{fd, POLLIN, 0};
       const int pr = poll(&p, 1, remaining_ms(deadline));
       if (pr == 0 || (pr < 0 && errno != EINTR) || remaining_ms(deadline) == 0)
-        throw Error(who, "timed out waiting for the edited image after " + std::to_string(timeout_) +
+        throw Error(who, "timed out waiting for the edited image after " + seconds_text(timeout_) +
                              " s (raise --editor-timeout)");
       if (pr < 0) continue;
       const ssize_t n = recv(fd, buf, sizeof buf, 0);
