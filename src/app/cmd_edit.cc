@@ -1,6 +1,7 @@
 // isegman edit <scene> [selection] <operation> [options] ... --out FILE: the manipulation
 // toolbox on the command line (see docs/edit.md). Operations chain left to right on one
 // edit session; each prints what it changed.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <set>
@@ -23,6 +24,10 @@
 #include "io/scene_loader.h"
 
 namespace isegman::app {
+
+// `isegman semantic` (src/app/cmd_semantic.cc) does instruction-driven editing.
+int run_semantic(const std::vector<std::string>& argv);
+
 namespace {
 
 using namespace isegman::edit;
@@ -200,6 +205,17 @@ void print_selection(const EditSession& e, const char* what) {
 }
 
 int run_edit(const std::vector<std::string>& argv) {
+  // `edit <scene> --selection F semantic --instruction ... --out F` is the semantic tool:
+  // it optimises the selection toward edited views, so it runs on its own.
+  if (std::find(argv.begin(), argv.end(), "semantic") != argv.end()) {
+    std::vector<std::string> rest;
+    for (const std::string& t : argv) {
+      if (t == "semantic") continue;
+      if (kOps.count(t)) throw Error("edit: `semantic` cannot be chained with `" + t + "`; run it on its own");
+      rest.push_back(t);
+    }
+    return run_semantic(rest);
+  }
   // Split into segments at operation words (a flag's value is never an operation).
   std::vector<Segment> segs(1);
   std::vector<std::string> global;
