@@ -13,6 +13,9 @@
 #include "io/image_io.h"
 #include "io/scene_loader.h"
 #include "render/rasterizer.h"
+#ifdef ISEGMAN_HAVE_SERVER
+#include "server/serve.h"
+#endif
 #ifdef ISEGMAN_HAVE_SEGMENT
 #include "app/segment_args.h"
 #include "core/selection.h"
@@ -85,7 +88,7 @@ std::vector<bool> demo_segmentation(const DemoScene& demo, int object, const fs:
 #endif
 
 int run_demo(const std::vector<std::string>& argv) {
-  Args args(argv, {"out", "density", "threads"}, {});
+  Args args(argv, {"out", "density", "threads", "port", "host"}, {"serve"});
   const std::string out = args.get("out", "isegman-demo");
   DemoSceneOptions opt;
   opt.density = float(args.get_double("density", 1.0));
@@ -124,11 +127,27 @@ int run_demo(const std::vector<std::string>& argv) {
   run_edit_demo(demo, (fs::path(out) / "edits").string());
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("demo finished in %.2f s; try: isegman info %s\n", secs, scene_dir.c_str());
+  if (args.has("serve")) {
+#ifdef ISEGMAN_HAVE_SERVER
+    server::ServeOptions so;
+    so.host = args.get("host", "127.0.0.1");
+    so.port = args.get_int("port", 8080);
+    if (so.port < 0 || so.port > 65535) throw Error("--port must be between 0 and 65535");
+    so.app.out_dir = (fs::path(out) / "exports").string();
+    so.app.views.cache_dir = default_cache_dir();
+    so.app.threads = s.threads;
+    return server::serve_scene(demo.bundle, so);
+#else
+    throw Error("--serve: this build has no web app (src/server)");
+#endif
+  }
   return 0;
 }
 
 RegisterCommand reg("demo", "build a synthetic scene, save it as a scene directory and render views",
-                    "usage: isegman demo [--out DIR (default isegman-demo)] [--density D] [--threads N]",
+                    "usage: isegman demo [--out DIR (default isegman-demo)] [--density D] [--threads N]\n"
+                    "                    [--serve [--port 8080] [--host 127.0.0.1]]\n"
+                    "  --serve  afterwards open the demo scene in the web app (http://HOST:PORT/)",
                     run_demo);
 
 }  // namespace
