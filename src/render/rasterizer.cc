@@ -30,8 +30,8 @@ struct Splat {
   float rgb[3];
   float depth;
   uint32_t index;        // Gaussian index in the scene
-  int px0, py0, px1, py1;  // pixel box outside which alpha < 1/255 (inclusive, clipped)
-  int tx0, ty0, tx1, ty1;  // tile rect [tx0, tx1) x [ty0, ty1)
+  uint16_t px0, py0, px1, py1;  // pixel box outside which alpha < 1/255 (inclusive, clipped)
+  uint16_t tx0, ty0, tx1, ty1;  // tile rect [tx0, tx1) x [ty0, ty1)
 };
 
 struct TileBuffers {
@@ -82,6 +82,8 @@ bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera
                     int degree, int grid_x, int grid_y, Splat& out) {
   const float opacity = 1.f / (1.f + std::exp(-scene.opacity[i]));
   if (!(opacity >= kMinAlpha)) return false;  // can never reach alpha 1/255
+  const float* p = &scene.positions[3 * i];
+  if (cam.R[6] * p[0] + cam.R[7] * p[1] + cam.R[8] * p[2] + cam.t[2] <= s.near_plane) return false;  // cheap cull first
   float cov3[6];
   covariance_3d(&scene.scales[3 * i], &scene.rotations[4 * i], cov3);
   Footprint f;
@@ -100,16 +102,23 @@ bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera
   const float level = 2.f * std::log(255.f * opacity);
   const float ex = std::sqrt(std::max(0.f, level * f.cov_a)) * 1.001f + 0.01f;
   const float ey = std::sqrt(std::max(0.f, level * f.cov_c)) * 1.001f + 0.01f;
-  out.px0 = std::max(0, int(std::ceil(f.mean_x - ex)));
-  out.px1 = std::min(cam.width - 1, int(std::floor(f.mean_x + ex)));
-  out.py0 = std::max(0, int(std::ceil(f.mean_y - ey)));
-  out.py1 = std::min(cam.height - 1, int(std::floor(f.mean_y + ey)));
-  if (out.px0 > out.px1 || out.py0 > out.py1) return false;
-  out.tx0 = std::max(rx0, out.px0 / kTileSize);
-  out.tx1 = std::min(rx1, out.px1 / kTileSize + 1);
-  out.ty0 = std::max(ry0, out.py0 / kTileSize);
-  out.ty1 = std::min(ry1, out.py1 / kTileSize + 1);
-  if (out.tx0 >= out.tx1 || out.ty0 >= out.ty1) return false;
+  const int px0 = std::max(0, int(std::ceil(f.mean_x - ex)));
+  const int px1 = std::min(cam.width - 1, int(std::floor(f.mean_x + ex)));
+  const int py0 = std::max(0, int(std::ceil(f.mean_y - ey)));
+  const int py1 = std::min(cam.height - 1, int(std::floor(f.mean_y + ey)));
+  if (px0 > px1 || py0 > py1) return false;
+  const int tx0 = std::max(rx0, px0 / kTileSize), tx1 = std::min(rx1, px1 / kTileSize + 1);
+  const int ty0 = std::max(ry0, py0 / kTileSize), ty1 = std::min(ry1, py1 / kTileSize + 1);
+  if (tx0 >= tx1 || ty0 >= ty1) return false;
+  // Images are at most 65535 pixels wide (Camera::validate), so 16 bits hold the boxes.
+  out.px0 = uint16_t(px0);
+  out.px1 = uint16_t(px1);
+  out.py0 = uint16_t(py0);
+  out.py1 = uint16_t(py1);
+  out.tx0 = uint16_t(tx0);
+  out.tx1 = uint16_t(tx1);
+  out.ty0 = uint16_t(ty0);
+  out.ty1 = uint16_t(ty1);
   out.mx = f.mean_x;
   out.my = f.mean_y;
   out.ca = f.conic_a;
@@ -119,7 +128,6 @@ bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera
   out.depth = f.depth;
   out.index = uint32_t(i);
   if (s.color) {
-    const float* p = &scene.positions[3 * i];
     float dx = p[0] - cam.center[0], dy = p[1] - cam.center[1], dz = p[2] - cam.center[2];
     const float n = std::sqrt(dx * dx + dy * dy + dz * dz);
     if (n > 0) { dx /= n; dy /= n; dz /= n; }
@@ -193,7 +201,14 @@ inline int blend_group(const Splat& g, float value, float dy, int k0, int x_base
 template <bool kVisit>
 void raster_tile(int tile_x, int tile_y, const Splat* splats, const uint32_t* list, size_t count, int width,
                  int height, const RenderSettings& s, const float* values, ContributionVisitor* visitor, int worker,
-                 TileBuffers& b, uint64_t& evaluated, uint64_t& contributed) {
+                 TileBuffers& b, uint64_t& evaluated_out, uint64_t& contributed_out) {
+  // Counted locally: the per-worker totals share a cache line, and bumping them in the
+  // pixel loop from two threads would serialise the workers (false sharing).
+  uint64_t evaluated = 0, contributed = 0;
+  struct Flush {
+    uint64_t &from_e, &from_c, &to_e, &to_c;
+    ~Flush() { to_e += from_e; to_c += from_c; }
+  } flush{evaluated, contributed, evaluated_out, contributed_out};
   const bool want_value = values != nullptr;
   const int x_begin = tile_x * kTileSize, y_begin = tile_y * kTileSize;
   const int x_end = std::min(width, x_begin + kTileSize), y_end = std::min(height, y_begin + kTileSize);
@@ -209,8 +224,8 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const uint32_t* li
     const Splat& g = splats[list[n]];
     const float value = want_value ? values[g.index] : 0.f;
     // Pixel box of this Gaussian inside the tile; columns past the image edge never count.
-    const int x0 = std::max(g.px0, x_begin), x1 = std::min(g.px1, x_end - 1);
-    const int y0 = std::max(g.py0, y_begin), y1 = std::min(g.py1, y_end - 1);
+    const int x0 = std::max(int(g.px0), x_begin), x1 = std::min(int(g.px1), x_end - 1);
+    const int y0 = std::max(int(g.py0), y_begin), y1 = std::min(int(g.py1), y_end - 1);
     for (int y = y0; y <= y1; ++y) {
       const float dy = g.my - float(y);
       const int row = (y - y_begin) * kTileSize;
@@ -256,10 +271,15 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
   auto t0 = Clock::now();
   constexpr size_t kChunk = 32768;
   const size_t chunks = (N + kChunk - 1) / kChunk;
-  std::vector<std::vector<Splat>> chunk_out(chunks);
+  // Reused between renders on the same thread: fresh buffers of this size cost more in
+  // page faults than the projection itself.
+  thread_local std::vector<std::vector<Splat>> scratch;
+  // A plain reference: lambdas running on worker threads must see this thread's buffers.
+  std::vector<std::vector<Splat>>& chunk_out = scratch;
+  if (chunk_out.size() < chunks) chunk_out.resize(chunks);
+  for (auto& v : chunk_out) v.clear();  // stale entries past `chunks` stay empty
   parallel_for(chunks, s.threads, [&](int, size_t c) {
     std::vector<Splat>& v = chunk_out[c];
-    v.reserve(kChunk);
     Splat sp;
     for (size_t i = c * kChunk, e = std::min(N, (c + 1) * kChunk); i < e; ++i)
       if (preprocess_one(scene, i, cam, s, degree, grid_x, grid_y, sp)) v.push_back(sp);
@@ -290,27 +310,53 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
     size_t k = 0;
     for (const auto& v : chunk_out)
       for (const Splat& sp : v) flat[k++] = &sp;
-    for (size_t j = 0; j < visible; ++j) splats[j] = *flat[order[j]];
+    parallel_chunks(visible, 65536, s.threads, [&](int, size_t a, size_t e) {
+      for (size_t j = a; j < e; ++j) splats[j] = *flat[order[j]];
+    });
   }
   std::vector<uint32_t>().swap(order);
-  std::vector<std::vector<Splat>>().swap(chunk_out);
+  // Counting sort into tiles, in parallel over contiguous (depth-ordered) slices: slice c
+  // writes after slices < c in every tile, so each tile list stays depth-sorted and the
+  // result does not depend on the thread count.
   const size_t tiles = size_t(grid_x) * grid_y;
+  const size_t slices = std::max<size_t>(1, std::min<size_t>(size_t(resolve_threads(s.threads)) * 2,
+                                                              (visible + 65535) / 65536));
+  const size_t per_slice = (visible + slices - 1) / std::max<size_t>(slices, 1);
+  std::vector<std::vector<uint32_t>> slice_count(slices, std::vector<uint32_t>(tiles, 0));
+  parallel_for(slices, s.threads, [&](int, size_t c) {
+    std::vector<uint32_t>& cnt = slice_count[c];
+    for (size_t k = c * per_slice, e = std::min(visible, (c + 1) * per_slice); k < e; ++k) {
+      const Splat& g = splats[k];
+      for (int ty = g.ty0; ty < g.ty1; ++ty)
+        for (int tx = g.tx0; tx < g.tx1; ++tx) ++cnt[size_t(ty) * grid_x + tx];
+    }
+  });
   std::vector<uint32_t>& tile_start = d.tile_start;
   tile_start.assign(tiles + 1, 0);
-  for (const Splat& g : splats)
-    for (int ty = g.ty0; ty < g.ty1; ++ty)
-      for (int tx = g.tx0; tx < g.tx1; ++tx) ++tile_start[size_t(ty) * grid_x + tx + 1];
-  for (size_t t = 0; t < tiles; ++t) tile_start[t + 1] += tile_start[t];
+  for (size_t t = 0; t < tiles; ++t) {
+    uint32_t sum = 0;
+    for (size_t c = 0; c < slices; ++c) sum += slice_count[c][t];
+    tile_start[t + 1] = tile_start[t] + sum;
+  }
+  // slice_count becomes each slice's write cursor per tile.
+  for (size_t t = 0; t < tiles; ++t) {
+    uint32_t cursor = tile_start[t];
+    for (size_t c = 0; c < slices; ++c) {
+      const uint32_t n = slice_count[c][t];
+      slice_count[c][t] = cursor;
+      cursor += n;
+    }
+  }
   std::vector<uint32_t>& tile_list = d.tile_list;
   tile_list.resize(tile_start[tiles]);
-  {
-    std::vector<uint32_t> fill(tile_start.begin(), tile_start.end() - 1);
-    for (size_t k = 0; k < splats.size(); ++k) {
+  parallel_for(slices, s.threads, [&](int, size_t c) {
+    std::vector<uint32_t>& fill = slice_count[c];
+    for (size_t k = c * per_slice, e = std::min(visible, (c + 1) * per_slice); k < e; ++k) {
       const Splat& g = splats[k];
       for (int ty = g.ty0; ty < g.ty1; ++ty)
         for (int tx = g.tx0; tx < g.tx1; ++tx) tile_list[fill[size_t(ty) * grid_x + tx]++] = uint32_t(k);
     }
-  }
+  });
   stats.tile_pairs = tile_list.size();
   stats.ms_sort = ms_since(t0);
 
