@@ -1,14 +1,13 @@
 #include "core/selection.h"
 
-#include <fcntl.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/scene.h"
 
@@ -34,38 +33,6 @@ uint64_t get_u64(const uint8_t* p) {
   uint64_t v = 0;
   for (int i = 0; i < 8; ++i) v |= uint64_t(p[i]) << (8 * i);
   return v;
-}
-
-// Core has no io dependency, so the selection file gets its own small atomic writer
-// (temporary file in the same folder + fsync + rename), as io/atomic_file does.
-void write_atomic(const std::string& path, const std::vector<uint8_t>& bytes) {
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw Error(path, std::string("cannot create output: ") + std::strerror(errno));
-  const uint8_t* p = bytes.data();
-  size_t left = bytes.size();
-  while (left > 0) {
-    ssize_t n = ::write(fd, p, left);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      int err = errno;
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      throw Error(path, std::string("write failed: ") + std::strerror(err));
-    }
-    p += n;
-    left -= size_t(n);
-  }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    int err = errno;
-    ::unlink(tmp.c_str());
-    throw Error(path, std::string("write failed: ") + std::strerror(err));
-  }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    int err = errno;
-    ::unlink(tmp.c_str());
-    throw Error(path, std::string("cannot move the finished file into place: ") + std::strerror(err));
-  }
 }
 
 }  // namespace
@@ -208,7 +175,7 @@ void write_selection(const std::string& path, const Selection& selection) {
   } catch (const Error& e) {
     throw Error(path, e.what());
   }
-  write_atomic(path, bytes);
+  write_file_atomic(path, bytes.data(), bytes.size());
 }
 
 }  // namespace isegman

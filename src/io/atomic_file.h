@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "core/atomic_write.h"
+
 namespace isegman {
 
-// Writes `bytes` to `path` via "<path>.tmp-<pid>" + fsync + rename. Throws Error naming
-// the path on failure; the temporary file is removed.
-void write_file_atomic(const std::string& path, const void* bytes, size_t size);
+// write_file_atomic(path, bytes, size) itself lives in core/atomic_write.h.
 inline void write_file_atomic(const std::string& path, const std::vector<uint8_t>& bytes) {
   write_file_atomic(path, bytes.data(), bytes.size());
 }

@@ -11,38 +11,41 @@
 
 namespace isegman {
 
-// Camera constants in float, prepared once per render.
-struct ProjectionCamera {
-  float R[9];  // world -> camera, row-major
-  float t[3];
-  float fx, fy, cx, cy;  // cx, cy in index coordinates (continuous - 0.5)
-  float lim_x_lo, lim_x_hi, lim_y_lo, lim_y_hi;  // clamp of x/z, y/z for the Jacobian
+// Camera constants prepared once per render, in the precision of the pass (float for
+// rendering, double for the gradient checks of the differentiable rasteriser).
+template <typename Real>
+struct BasicProjectionCamera {
+  Real R[9];  // world -> camera, row-major
+  Real t[3];
+  Real fx, fy, cx, cy;  // cx, cy in index coordinates (continuous - 0.5)
+  Real lim_x_lo, lim_x_hi, lim_y_lo, lim_y_hi;  // clamp of x/z, y/z for the Jacobian
+  Real center[3];  // camera centre in world space (for SH view directions)
   int width, height;
-  float center[3];  // camera centre in world space (for SH view directions)
 
-  explicit ProjectionCamera(const Camera& cam) {
+  explicit BasicProjectionCamera(const Camera& cam) {
     for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) R[3 * r + c] = float(cam.R.m[r][c]);
-      t[r] = float(cam.t[r]);
+      for (int c = 0; c < 3; ++c) R[3 * r + c] = Real(cam.R.m[r][c]);
+      t[r] = Real(cam.t[r]);
     }
-    fx = float(cam.fx);
-    fy = float(cam.fy);
-    cx = float(cam.cx - 0.5);
-    cy = float(cam.cy - 0.5);
+    fx = Real(cam.fx);
+    fy = Real(cam.fy);
+    cx = Real(cam.cx - 0.5);
+    cy = Real(cam.cy - 0.5);
     // INRIA clamps x/z to +-1.3 tan(fov/2); with an off-centre principal point the
     // same 30 % margin is taken on each side of the image.
-    lim_x_lo = -float((cam.cx + 0.15 * cam.width) / cam.fx);
-    lim_x_hi = float((cam.width - cam.cx + 0.15 * cam.width) / cam.fx);
-    lim_y_lo = -float((cam.cy + 0.15 * cam.height) / cam.fy);
-    lim_y_hi = float((cam.height - cam.cy + 0.15 * cam.height) / cam.fy);
+    lim_x_lo = -Real((cam.cx + 0.15 * cam.width) / cam.fx);
+    lim_x_hi = Real((cam.width - cam.cx + 0.15 * cam.width) / cam.fx);
+    lim_y_lo = -Real((cam.cy + 0.15 * cam.height) / cam.fy);
+    lim_y_hi = Real((cam.height - cam.cy + 0.15 * cam.height) / cam.fy);
+    const Vec3 c = cam.center();
+    center[0] = Real(c.x);
+    center[1] = Real(c.y);
+    center[2] = Real(c.z);
     width = cam.width;
     height = cam.height;
-    Vec3 c = cam.center();
-    center[0] = float(c.x);
-    center[1] = float(c.y);
-    center[2] = float(c.z);
   }
 };
+using ProjectionCamera = BasicProjectionCamera<float>;
 
 // 3D covariance (upper triangle: xx xy xz yy yz zz) from log-scales and a quaternion.
 inline void covariance_3d(const float* log_scale, const float* quat_wxyz, float cov[6]) {

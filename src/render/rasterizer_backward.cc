@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/sh.h"
+#include "render/projection.h"
 #include "render/radix_sort.h"
 
 namespace isegman {
@@ -18,34 +19,7 @@ constexpr int kTilePixels = kTileSize * kTileSize;
 
 // The camera constants of ProjectionCamera (projection.h) in the scalar type.
 template <typename Real>
-struct DiffCamera {
-  Real R[9], t[3];
-  Real fx, fy, cx, cy;
-  Real lim_x_lo, lim_x_hi, lim_y_lo, lim_y_hi;
-  Real center[3];
-  int width, height;
-
-  explicit DiffCamera(const Camera& cam) {
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) R[3 * r + c] = Real(cam.R.m[r][c]);
-      t[r] = Real(cam.t[r]);
-    }
-    fx = Real(cam.fx);
-    fy = Real(cam.fy);
-    cx = Real(cam.cx - 0.5);
-    cy = Real(cam.cy - 0.5);
-    lim_x_lo = -Real((cam.cx + 0.15 * cam.width) / cam.fx);
-    lim_x_hi = Real((cam.width - cam.cx + 0.15 * cam.width) / cam.fx);
-    lim_y_lo = -Real((cam.cy + 0.15 * cam.height) / cam.fy);
-    lim_y_hi = Real((cam.height - cam.cy + 0.15 * cam.height) / cam.fy);
-    const Vec3 c = cam.center();
-    center[0] = Real(c.x);
-    center[1] = Real(c.y);
-    center[2] = Real(c.z);
-    width = cam.width;
-    height = cam.height;
-  }
-};
+using DiffCamera = BasicProjectionCamera<Real>;
 
 // ---------------------------------------------------------------------------------------
 // Per-Gaussian maths, forward and backward side by side (gsplat style).
