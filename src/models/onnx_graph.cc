@@ -8,6 +8,8 @@
 
 #include <malloc.h>
 
+#include <omp.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -42,6 +44,13 @@ void configure_threads(int threads) {
     at::set_num_threads(n);
   });
 }
+
+void limit_threads_of_this_thread(int threads) {
+  if (threads < 1) throw Error("limit_threads_of_this_thread: needs at least one thread");
+  omp_set_num_threads(threads);
+}
+
+int threads_of_this_thread() { return omp_get_max_threads(); }
 
 namespace {
 

@@ -19,6 +19,11 @@ namespace isegman::models {
 // started with OMP_WAIT_POLICY=PASSIVE, else 1 (spinning OpenMP workers make 2 threads much
 // slower than 1 on small VMs; the policy cannot be changed once the process runs).
 void configure_threads(int threads = 0);
+// Limits the intra-op threads of graphs run from the calling thread only (OpenMP keeps
+// the thread count per thread): lets a caller run several small graphs side by side,
+// one core each, while the process default stays as configured.
+void limit_threads_of_this_thread(int threads);
+int threads_of_this_thread();
 
 class OnnxGraph {
  public:

@@ -191,9 +191,15 @@ inline int blend_group(const Splat& g, float value, float dy, int k0, int x_base
   const int added = lanes_set(contrib);
   contributed += uint64_t(added);
   if constexpr (kVisit) {
-    if (added > 0)
-      for (int i = 0; i < kLanes; ++i)
-        if (contrib[i]) visitor->visit(worker, x_base + i, y, g.index, w[i]);
+    if (added > 0) {
+      unsigned lanes = 0;
+      float weights[kLanes];
+      for (int i = 0; i < kLanes; ++i) {
+        lanes |= contrib[i] ? 1u << i : 0u;
+        weights[i] = w[i];
+      }
+      visitor->visit_row8(worker, x_base, y, g.index, weights, lanes);
+    }
   }
   return lanes_set(term);
 }

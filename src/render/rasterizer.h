@@ -38,6 +38,13 @@ class ContributionVisitor {
   virtual ~ContributionVisitor() = default;
   virtual void begin(int workers) {}
   virtual void visit(int worker, int x, int y, uint32_t gaussian, float weight) = 0;
+  // The same contributions eight pixels at a time: pixels (x_base + i, y) for the lanes i
+  // whose bit is set in `lanes`, with weights[i]. The rasteriser calls this; override it
+  // to avoid a virtual call per pixel (the default forwards to visit()).
+  virtual void visit_row8(int worker, int x_base, int y, uint32_t gaussian, const float* weights, unsigned lanes) {
+    for (int i = 0; i < 8; ++i)
+      if (lanes & (1u << i)) visit(worker, x_base + i, y, gaussian, weights[i]);
+  }
 };
 
 struct RenderStats {

@@ -82,8 +82,8 @@ Propagated propagate(const SegmentView& from, const ViewClick& click, const Segm
   }
 
   // Epipolar search over the target view's feature grid.
-  const models::FeatureMap src_features = from.embedding.feature_map();
-  const models::FeatureMap dst_features = to.embedding.feature_map();
+  const models::FeatureMap& src_features = from.features;
+  const models::FeatureMap& dst_features = to.features;
   Point2 a, b;
   const double t_max = std::max(1.0, scene_extent) * 1e3;
   if (!epipolar_segment(from.camera, click.u, click.v, to.camera, 1e-6, t_max, a, b)) {

@@ -1,11 +1,14 @@
 #include "segment/session.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <numeric>
 
 #include "core/error.h"
+#include "core/parallel.h"
+#include "models/onnx_graph.h"
 
 namespace isegman::segment {
 
@@ -104,12 +107,18 @@ RoundReport Session::run_round(State& next, const State& prev) {
 
   // 2. SAM in every view that has a positive click.
   t0 = Clock::now();
-  for (size_t k = 0; k < V; ++k) {
+  std::atomic<int> segmented{0};
+  // Small decoder graphs scale poorly over cores: decode several views side by side, each
+  // on one core, then give the calling thread back its own thread count.
+  const int workers = std::max(1, options_.sam_workers);
+  const int own_threads = models::threads_of_this_thread();
+  parallel_for(V, workers, [&](int, size_t k) {
+    if (workers > 1) models::limit_threads_of_this_thread(1);
     ViewState& vs = fresh[k];
     const bool positive = std::any_of(vs.clicks.begin(), vs.clicks.end(), [](const ViewClick& c) { return c.label == 1; });
     if (!positive) {
       vs.status = ViewStatus::NoClicks;
-      continue;
+      return;
     }
     vs.status = ViewStatus::Skipped;  // until inspection decides
     // Reuse last round's result when this view's clicks did not change.
@@ -123,14 +132,14 @@ RoundReport Session::run_round(State& next, const State& prev) {
       vs.mask_pixels = old.mask_pixels;
       vs.sam_score = old.sam_score;
       vs.low_res = old.low_res;
-      continue;
+      return;
     }
     std::vector<models::Click> clicks;
     for (const ViewClick& c : vs.clicks) clicks.push_back({c.u - 0.5, c.v - 0.5, c.label});  // SAM: pixel indices
     const std::vector<float>* previous =
         options_.reuse_previous_mask && !old.low_res.empty() ? &old.low_res : nullptr;
     models::SegmentResult r = sam_->decode(views_[k].embedding, clicks, previous);
-    ++rep.views_segmented;
+    ++segmented;
     vs.mask.resize(r.mask.data.size());
     vs.mask_pixels = 0;
     for (size_t i = 0; i < r.mask.data.size(); ++i) {
@@ -139,7 +148,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
     }
     vs.sam_score = r.score;
     vs.low_res = std::move(r.low_res_logits);
-  }
+  });
+  models::limit_threads_of_this_thread(own_threads);
+  rep.views_segmented = segmented;
   rep.ms_sam = ms_since(t0);
 
   // 3. Inspection and voting: the latest clicked view first, then the others nearest
@@ -170,16 +181,34 @@ RoundReport Session::run_round(State& next, const State& prev) {
     }
     const SegmentView& view = views_[k];
     const Image mask = mask_image(vs.mask, view.camera.width, view.camera.height);
-    if (!first && options_.inspection) {
+    const ViewState& old = prev.views[k];
+    const bool inspect = !first && options_.inspection;
+    const bool reuse = old.status == ViewStatus::Accepted && old.mask == vs.mask;
+    std::vector<float> values;
+    if (inspect) {
       current = acc.select(options_.tau, options_.min_total_weight);
-      std::vector<float> values(current.size());
+      values.resize(current.size());
       for (size_t i = 0; i < values.size(); ++i) values[i] = current[i] ? 1.f : 0.f;
-      RenderSettings s;
-      s.color = false;
-      s.depth = false;
-      s.threads = options_.threads;
-      const std::vector<uint8_t> tiles = tiles_under_mask(mask, view.frame.grid_x, view.frame.grid_y);
-      const Image coverage = rasterize(view.frame, s, &values, nullptr, &tiles).value;
+    }
+    // One pass gives both the mask's votes and, for inspection, the selection's coverage
+    // (votes of an unchanged mask are reused from the last round).
+    Image coverage;
+    ViewVotes positive;
+    if (reuse) {
+      positive = old.positive;
+      if (inspect) {
+        RenderSettings rs;
+        rs.color = false;
+        rs.depth = false;
+        rs.threads = options_.threads;
+        const std::vector<uint8_t> tiles = tiles_under_mask(mask, view.frame.grid_x, view.frame.grid_y);
+        coverage = rasterize(view.frame, rs, &values, nullptr, &tiles).value;
+      }
+    } else {
+      positive = masked_votes(view.frame, mask, options_.threads, inspect ? &values : nullptr,
+                              inspect ? &coverage : nullptr);
+    }
+    if (inspect) {
       int overlap = 0;
       for (size_t i = 0; i < vs.mask.size(); ++i) overlap += vs.mask[i] && coverage.data[i] > 0.5f;
       vs.overlap = double(overlap) / vs.mask_pixels;
@@ -190,10 +219,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       }
     }
     first = false;
-    // Reuse the positive votes when the mask is unchanged since the last round.
-    const ViewState& old = prev.views[k];
-    if (old.status == ViewStatus::Accepted && old.mask == vs.mask) vs.positive = old.positive;
-    else vs.positive = masked_votes(view.frame, mask, options_.threads);
+    vs.positive = std::move(positive);
     acc.add(vs.positive, view.all_votes, +1);
     vs.status = ViewStatus::Accepted;
     ++rep.accepted;

@@ -22,6 +22,7 @@ struct SessionOptions {
   double min_overlap = 0.01;       // IIM: overlap pixels needed, as a share of the SAM mask
   bool reuse_previous_mask = true; // feed each view's previous low-res mask back to SAM
   int threads = 0;
+  int sam_workers = 2;             // views decoded by SAM at the same time
 };
 
 struct UserClick {

@@ -69,6 +69,7 @@ SegmentView build_view(const GaussianScene& scene, const Camera& camera, int cam
   }
   v.all_votes = total_votes(v.frame, opt.threads);
   v.embedding = sam.encode_cached(v.rgb, opt.cache_dir, timings);
+  v.features = v.embedding.feature_map();
   return v;
 }
 

@@ -25,7 +25,11 @@ struct ViewVotes {
 ViewVotes total_votes(const PreparedFrame& frame, int threads = 0);
 // Votes from the pixels where mask > 0.5 (mask at the frame's resolution); only the tiles
 // the mask touches are rasterised.
-ViewVotes masked_votes(const PreparedFrame& frame, const Image& mask, int threads = 0);
+// With `values` (one per Gaussian, e.g. the current selection as 0/1) the same pass also
+// renders their coverage into `coverage` (1 channel, the frame's size; 0 outside the
+// tiles the mask touches): inspection and voting share one rasterisation.
+ViewVotes masked_votes(const PreparedFrame& frame, const Image& mask, int threads = 0,
+                       const std::vector<float>* values = nullptr, Image* coverage = nullptr);
 
 class VoteAccumulator {
  public:
