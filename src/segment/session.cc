@@ -111,45 +111,50 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // Small decoder graphs scale poorly over cores: decode several views side by side, each
   // on one core, then give the calling thread back its own thread count.
   const int workers = std::max(1, options_.sam_workers);
-  const int own_threads = models::threads_of_this_thread();
-  parallel_for(V, workers, [&](int, size_t k) {
-    if (workers > 1) models::limit_threads_of_this_thread(1);
-    ViewState& vs = fresh[k];
-    const bool positive = std::any_of(vs.clicks.begin(), vs.clicks.end(), [](const ViewClick& c) { return c.label == 1; });
-    if (!positive) {
-      vs.status = ViewStatus::NoClicks;
-      return;
-    }
-    vs.status = ViewStatus::Skipped;  // until inspection decides
-    // Reuse last round's result when this view's clicks did not change.
-    const ViewState& old = prev.views[k];
-    bool same = old.clicks.size() == vs.clicks.size() && !old.low_res.empty();
-    for (size_t i = 0; same && i < vs.clicks.size(); ++i)
-      same = old.clicks[i].u == vs.clicks[i].u && old.clicks[i].v == vs.clicks[i].v &&
-             old.clicks[i].label == vs.clicks[i].label;
-    if (same) {
-      vs.mask = old.mask;
-      vs.mask_pixels = old.mask_pixels;
-      vs.sam_score = old.sam_score;
-      vs.low_res = old.low_res;
-      return;
-    }
-    std::vector<models::Click> clicks;
-    for (const ViewClick& c : vs.clicks) clicks.push_back({c.u - 0.5, c.v - 0.5, c.label});  // SAM: pixel indices
-    const std::vector<float>* previous =
-        options_.reuse_previous_mask && !old.low_res.empty() ? &old.low_res : nullptr;
-    models::SegmentResult r = sam_->decode(views_[k].embedding, clicks, previous);
-    ++segmented;
-    vs.mask.resize(r.mask.data.size());
-    vs.mask_pixels = 0;
-    for (size_t i = 0; i < r.mask.data.size(); ++i) {
-      vs.mask[i] = r.mask.data[i] > 0.5f;
-      vs.mask_pixels += vs.mask[i];
-    }
-    vs.sam_score = r.score;
-    vs.low_res = std::move(r.low_res_logits);
-  });
-  models::limit_threads_of_this_thread(own_threads);
+  struct RestoreThreads {  // the calling thread decodes too: give it its count back, even on a throw
+    int n = models::threads_of_this_thread();
+    ~RestoreThreads() { models::limit_threads_of_this_thread(n); }
+  };
+  {
+    RestoreThreads restore_threads;
+    parallel_for(V, workers, [&](int, size_t k) {
+      if (workers > 1) models::limit_threads_of_this_thread(1);
+      ViewState& vs = fresh[k];
+      const bool positive = std::any_of(vs.clicks.begin(), vs.clicks.end(), [](const ViewClick& c) { return c.label == 1; });
+      if (!positive) {
+        vs.status = ViewStatus::NoClicks;
+        return;
+      }
+      vs.status = ViewStatus::Skipped;  // until inspection decides
+      // Reuse last round's result when this view's clicks did not change.
+      const ViewState& old = prev.views[k];
+      bool same = old.clicks.size() == vs.clicks.size() && !old.low_res.empty();
+      for (size_t i = 0; same && i < vs.clicks.size(); ++i)
+        same = old.clicks[i].u == vs.clicks[i].u && old.clicks[i].v == vs.clicks[i].v &&
+               old.clicks[i].label == vs.clicks[i].label;
+      if (same) {
+        vs.mask = old.mask;
+        vs.mask_pixels = old.mask_pixels;
+        vs.sam_score = old.sam_score;
+        vs.low_res = old.low_res;
+        return;
+      }
+      std::vector<models::Click> clicks;
+      for (const ViewClick& c : vs.clicks) clicks.push_back({c.u - 0.5, c.v - 0.5, c.label});  // SAM: pixel indices
+      const std::vector<float>* previous =
+          options_.reuse_previous_mask && !old.low_res.empty() ? &old.low_res : nullptr;
+      models::SegmentResult r = sam_->decode(views_[k].embedding, clicks, previous);
+      ++segmented;
+      vs.mask.resize(r.mask.data.size());
+      vs.mask_pixels = 0;
+      for (size_t i = 0; i < r.mask.data.size(); ++i) {
+        vs.mask[i] = r.mask.data[i] > 0.5f;
+        vs.mask_pixels += vs.mask[i];
+      }
+      vs.sam_score = r.score;
+      vs.low_res = std::move(r.low_res_logits);
+    });
+  }
   rep.views_segmented = segmented;
   rep.ms_sam = ms_since(t0);
 
