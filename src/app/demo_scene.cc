@@ -5,29 +5,14 @@
 #include <cstdio>
 #include <cstdint>
 
+#include "core/random.h"
 #include "core/sh.h"
 #include "render/rasterizer.h"
 
 namespace isegman {
 namespace {
 
-// Small deterministic generator (SplitMix64) so the demo is identical everywhere.
-struct Rng {
-  uint64_t s;
-  explicit Rng(uint64_t seed) : s(seed) {}
-  uint64_t next() {
-    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
-  double range(double a, double b) { return a + (b - a) * uniform(); }
-  double normal() {
-    double u = std::max(uniform(), 1e-12), v = uniform();
-    return std::sqrt(-2 * std::log(u)) * std::cos(2 * M_PI * v);
-  }
-};
+using Rng = SplitMix64;  // the demo is identical everywhere
 
 // Quaternion turning the local z axis onto `n`.
 Quat align_z_to(const Vec3& n) {

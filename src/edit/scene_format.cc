@@ -20,14 +20,6 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-float f32(const uint8_t* p) {
-  uint32_t u = 0;
-  for (int i = 0; i < 4; ++i) u |= uint32_t(p[i]) << (8 * i);
-  float v;
-  std::memcpy(&v, &u, 4);
-  return v;
-}
-
 }  // namespace
 
 const char* format_name(SceneFormat f) { return f == SceneFormat::kPly ? "PLY" : ".splat"; }
@@ -45,7 +37,7 @@ SceneFormat detect_scene_format(const uint8_t* data, size_t size, const std::str
   for (size_t i = 0; i < n; i += step) {
     const uint8_t* r = data + i * kSplatRecordBytes;
     for (int a = 0; a < 3; ++a) {
-      const float p = f32(r + 4 * a), s = f32(r + 12 + 4 * a);
+      const float p = splat_f32(r + 4 * a), s = splat_f32(r + 12 + 4 * a);
       if (!std::isfinite(p) || std::fabs(p) > 1e8f || !std::isfinite(s) || !(s > 0) || s > 1e8f)
         throw Error(source, "not a scene file: no PLY header, and record " + std::to_string(i) +
                                 " is not a valid .splat record (position/scale out of range)");

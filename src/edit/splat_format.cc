@@ -18,13 +18,6 @@ void put_f32(uint8_t* p, float v) {
   std::memcpy(&u, &v, 4);
   for (int i = 0; i < 4; ++i) p[i] = uint8_t(u >> (8 * i));
 }
-float get_f32(const uint8_t* p) {
-  uint32_t u = 0;
-  for (int i = 0; i < 4; ++i) u |= uint32_t(p[i]) << (8 * i);
-  float v;
-  std::memcpy(&v, &u, 4);
-  return v;
-}
 
 }  // namespace
 
@@ -75,12 +68,12 @@ GaussianScene parse_splat(const uint8_t* data, size_t size, const std::string& s
   for (size_t i = 0; i < n; ++i) {
     const uint8_t* r = data + i * kSplatRecordBytes;
     for (int a = 0; a < 3; ++a) {
-      const float p = get_f32(r + 4 * a);
+      const float p = splat_f32(r + 4 * a);
       if (!std::isfinite(p)) throw Error(source, "Gaussian " + std::to_string(i) + " has a non-finite position");
       s.positions[3 * i + a] = p;
     }
     for (int a = 0; a < 3; ++a) {
-      const float v = get_f32(r + 12 + 4 * a);
+      const float v = splat_f32(r + 12 + 4 * a);
       if (!std::isfinite(v) || !(v > 0))
         throw Error(source, "Gaussian " + std::to_string(i) + " has a scale that is not a positive finite number");
       s.scales[3 * i + a] = std::log(v);

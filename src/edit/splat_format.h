@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,14 @@
 namespace isegman::edit {
 
 constexpr size_t kSplatRecordBytes = 32;
+
+// A little-endian float32 field of a record.
+inline float splat_f32(const uint8_t* p) {
+  const uint32_t u = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+  float v;
+  std::memcpy(&v, &u, 4);
+  return v;
+}
 
 // Validates the scene (non-empty, finite) and encodes it; `notes` gets what was lost.
 std::vector<uint8_t> serialize_splat(const GaussianScene& scene, std::vector<std::string>* notes = nullptr);

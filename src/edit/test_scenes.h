@@ -6,21 +6,14 @@
 #include <cstring>
 #include <vector>
 
+#include "core/random.h"
 #include "core/scene.h"
 
 namespace isegman::edit::testing {
 
-struct TestRng {
-  uint64_t s;
-  explicit TestRng(uint64_t seed) : s(seed * 0x9E3779B97F4A7C15ull + 1) {}
-  uint64_t next() {
-    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
-  double range(double a, double b) { return a + (b - a) * uniform(); }
+// SplitMix64 with the seed spread so that small seeds give unrelated streams.
+struct TestRng : SplitMix64 {
+  explicit TestRng(uint64_t seed) : SplitMix64(seed * 0x9E3779B97F4A7C15ull + 1) {}
 };
 
 // n Gaussians in [-1, 1]^3 with random shapes, unnormalised rotations, opacities and SH
