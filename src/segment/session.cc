@@ -71,7 +71,8 @@ RoundReport Session::click(int view, const ViewClick& c) {
     throw Error("click (" + std::to_string(c.u) + ", " + std::to_string(c.v) + ") is outside view '" +
                 views_[size_t(view)].name + "' (" + std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
   if (c.label != 0 && c.label != 1) throw Error("click label must be 1 (positive) or 0 (negative)");
-  State next = state_;
+  State next;  // run_round derives the views, votes and selection from the clicks
+  next.clicks = state_.clicks;
   next.clicks.push_back({view, c});
   RoundReport report = run_round(next, state_);
   history_.push_back(std::move(state_));
