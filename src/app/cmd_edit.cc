@@ -34,8 +34,9 @@ using namespace isegman::edit;
 
 const char* kUsage = R"(usage: isegman edit <scene> [selection] <operation> [options] [<operation> ...] --out FILE
 
-<scene>: a scene directory, an INRIA PLY or a .splat file (the format is detected by content).
---out FILE        result, *.ply (INRIA PLY) or *.splat; never one of the inputs
+<scene>: a scene directory or a splat file: INRIA PLY, compressed PLY, .splat, .spz, .sog
+        (the format is detected by content).
+--out FILE        result, *.ply (INRIA PLY), *.compressed.ply, *.splat or *.spz; never an input
 --save-selection FILE   also write the final selection (.isel)
 --history-mb N    undo history cap (default 512)
 
@@ -234,7 +235,7 @@ int run_edit(const std::vector<std::string>& argv) {
     if (takes_value(t, op) && i + 1 < argv.size()) dst.push_back(argv[++i]);
   }
   const Args g(global, kGlobalValue, {});
-  if (!g.has("out")) throw Error("edit: --out FILE is required (*.ply or *.splat)");
+  if (!g.has("out")) throw Error("edit: --out FILE is required (*.ply, *.compressed.ply, *.splat or *.spz)");
   const std::string out = g.get("out");
   output_format_for(out);  // fail early on an unknown extension
   HistoryLimits limits;
@@ -244,7 +245,7 @@ int run_edit(const std::vector<std::string>& argv) {
 
   const Args head(segs[0].args, op_value_flags(""), op_switch_flags(""));
   if (segs.size() < 2) throw Error("edit: no operation given (remove, extract, colorize, scale, copy, transform, combine, select)");
-  const std::string scene_path = head.positional(0, "<scene>: a scene directory, PLY or .splat file");
+  const std::string scene_path = head.positional(0, "<scene>: a scene directory or a splat file");
   if (head.positionals().size() > 1) throw Error("edit: unexpected argument '" + head.positionals()[1] + "'");
   Loaded in = load_any(scene_path);
   std::vector<std::string> inputs{in.file, scene_path};
@@ -334,17 +335,21 @@ int run_edit(const std::vector<std::string>& argv) {
   }
 
   std::vector<std::string> notes;
-  write_scene_file(out, session.scene(), inputs, &notes);
+  std::vector<uint32_t> order;  // scene index of each written Gaussian
+  write_scene_file(out, session.scene(), inputs, &notes, &order);
   for (const auto& n : notes) std::printf("note: %s\n", n.c_str());
   std::printf("wrote %s (%s, %zu Gaussians, SH degree %d)\n", out.c_str(), format_name(output_format_for(out)),
-              session.scene().size(), output_format_for(out) == SceneFormat::kPly ? session.scene().sh_degree : 0);
+              session.scene().size(), format_keeps_sh(output_format_for(out)) ? session.scene().sh_degree : 0);
   if (g.has("save-selection")) {
     const std::string sp = g.get("save-selection");
     refuse_overwriting_inputs(sp, inputs);
     // Tie the selection to the scene as written (a .splat quantises it): read it back.
     const GaussianScene written = read_scene_file(out);
-    if (written.size() != session.scene().size()) throw Error(out, "read back a different number of Gaussians");
-    write_selection(sp, Selection::from_mask(written, session.mask()));
+    if (written.size() != session.scene().size() || order.size() != written.size())
+      throw Error(out, "read back a different number of Gaussians");
+    std::vector<bool> mask(written.size());
+    for (size_t i = 0; i < order.size(); ++i) mask[i] = session.mask()[order[i]];
+    write_selection(sp, Selection::from_mask(written, mask));
     std::printf("wrote %s (selection of %zu Gaussians)\n", sp.c_str(), session.selection().count());
   }
   return 0;

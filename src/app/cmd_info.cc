@@ -4,12 +4,13 @@
 #include "app/args.h"
 #include "app/command.h"
 #include "app/scene_args.h"
+#include "core/virtual_views.h"
 
 namespace isegman::app {
 namespace {
 
 int run_info(const std::vector<std::string>& argv) {
-  Args args(argv, {"cameras", "images"}, {});
+  Args args(argv, scene_value_flags(), scene_switch_flags());
   SceneBundle b = load_scene_from_args(args, /*require_cameras=*/false);
   const GaussianScene& g = b.gaussians;
   Vec3 lo, hi;
@@ -18,6 +19,9 @@ int run_info(const std::vector<std::string>& argv) {
   std::printf("gaussians:  %zu\n", g.size());
   std::printf("sh degree:  %d (%d coefficients per channel)\n", g.sh_degree, g.coeffs());
   std::printf("bounds:     [%.4g, %.4g, %.4g] .. [%.4g, %.4g, %.4g]\n", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+  const RobustBounds rb = robust_bounds(g);
+  std::printf("robust:     [%.4g, %.4g, %.4g] .. [%.4g, %.4g, %.4g] (5th-95th opacity-weighted percentiles)\n",
+              rb.lo.x, rb.lo.y, rb.lo.z, rb.hi.x, rb.hi.y, rb.hi.z);
   std::printf("normals:    %s\n", g.normals.empty() ? "no" : "yes");
   if (!g.extras.empty()) {
     std::printf("extra properties:");
@@ -29,7 +33,8 @@ int run_info(const std::vector<std::string>& argv) {
     std::printf("cameras:    none\n");
     return 0;
   }
-  std::printf("cameras:    %zu from %s\n", b.cameras.size(), b.cameras_path.c_str());
+  std::printf("cameras:    %zu from %s\n", b.cameras.size(),
+              b.cameras_path.empty() ? "virtual views" : b.cameras_path.c_str());
   size_t with_images = 0;
   for (const auto& c : b.cameras) with_images += !c.image_path.empty();
   std::printf("images:     %zu of %zu found%s%s\n", with_images, b.cameras.size(), b.images_dir.empty() ? "" : " in ",

@@ -18,8 +18,10 @@ namespace isegman::app {
 namespace {
 
 int run_render(const std::vector<std::string>& argv) {
-  Args args(argv, {"cameras", "images", "camera", "width", "out", "background", "threads", "sh-degree"},
-            {"depth", "alpha", "compare"});
+  std::set<std::string> values = scene_value_flags(), switches = scene_switch_flags();
+  values.insert({"camera", "width", "out", "background", "threads", "sh-degree"});
+  switches.insert({"depth", "alpha", "compare"});
+  Args args(argv, values, switches);
   if (!args.has("out")) throw Error("missing --out DIR");
   SceneBundle b = load_scene_from_args(args);
   const std::string out_dir = args.get("out");

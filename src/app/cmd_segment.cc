@@ -35,7 +35,9 @@ std::vector<segment::PromptClick> parse_clicks(const Args& args) {
 
 int run_segment(const std::vector<std::string>& argv) {
   std::set<std::string> values = segment_value_flags(), switches = segment_switch_flags();
-  values.insert({"cameras", "images", "view", "click", "neg", "out", "ply", "overlays"});
+  values.insert({"view", "click", "neg", "out", "ply", "overlays"});
+  values.insert(scene_value_flags().begin(), scene_value_flags().end());
+  switches.insert(scene_switch_flags().begin(), scene_switch_flags().end());
   Args args(argv, values, switches);
   if (!args.has("out")) throw Error("missing --out FILE (the selection file to write, e.g. sel.isel)");
   if (!args.has("view")) throw Error("missing --view ID|NAME (the camera the clicks are in)");

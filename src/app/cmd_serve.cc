@@ -17,6 +17,8 @@ int run_serve(const std::vector<std::string>& argv) {
   std::set<std::string> values = segment_value_flags(), switches = segment_switch_flags();
   values.insert({"cameras", "images", "port", "host", "out-dir", "preview", "background", "max-seconds"});
   switches.insert("no-segmentation");
+  values.insert(scene_value_flags().begin(), scene_value_flags().end());
+  switches.insert(scene_switch_flags().begin(), scene_switch_flags().end());
   Args args(argv, values, switches);
   if (args.has("photos")) throw Error("--photos: the app segments renders (edits change what the photos show)");
   SceneBundle bundle = load_scene_from_args(args);

@@ -5,7 +5,9 @@
 #include "core/error.h"
 #include "io/camera_loader.h"
 #include "io/cameras_json.h"
+#include "io/gaussian_file.h"
 #include "io/ply.h"
+#include "io/sog.h"
 
 namespace fs = std::filesystem;
 
@@ -65,7 +67,7 @@ SceneBundle load_scene(const std::string& path, const SceneLoadOptions& opt) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw Error(path, "no such file or directory");
   fs::path root;
-  if (fs::is_directory(path, ec)) {
+  if (fs::is_directory(path, ec) && !is_sog_dir(path)) {
     root = fs::path(path);
     b.ply_path = find_scene_ply(path);
     if (opt.cameras_path.empty() && fs::is_regular_file(root / "cameras.json", ec))
@@ -80,11 +82,21 @@ SceneBundle load_scene(const std::string& path, const SceneLoadOptions& opt) {
       b.cameras_path = (root / "cameras.json").string();
   }
   if (!opt.cameras_path.empty()) b.cameras_path = opt.cameras_path;
-  b.gaussians = read_ply(b.ply_path);
+  LoadedGaussians lg = load_gaussians(b.ply_path);
+  b.gaussians = std::move(lg.scene);
+  if (opt.notes) opt.notes->insert(opt.notes->end(), lg.notes.begin(), lg.notes.end());
   if (!b.cameras_path.empty()) {
     b.cameras = load_cameras(b.cameras_path);
-  } else if (opt.require_cameras) {
+  } else if (!opt.virtual_views_when_missing && opt.require_cameras) {
     throw Error(path, "no cameras: the scene has no cameras.json; pass a camera file (--cameras FILE)");
+  }
+  if ((b.cameras.empty() && opt.virtual_views_when_missing) || opt.add_virtual_views) {
+    const std::vector<Camera> v = make_virtual_views(b.gaussians, b.cameras, opt.virtual_views);
+    if (opt.notes)
+      opt.notes->push_back(std::to_string(v.size()) + " virtual views (" + v.front().name + "..." + v.back().name +
+                           ") around the robust centre of the Gaussians" +
+                           (b.cameras.empty() ? std::string(": the scene has no camera file") : std::string()));
+    b.cameras.insert(b.cameras.end(), v.begin(), v.end());
   }
   b.images_dir = opt.images_dir.empty() ? find_images_dir(root) : opt.images_dir;
   attach_images(b);

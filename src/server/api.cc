@@ -175,8 +175,8 @@ void register_routes(httplib::Server& server, AppState& app) {
   server.Get("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     check_params(req, {"format"});
     const std::string f = req.has_param("format") ? param(req, "format") : "ply";
-    if (f != "ply" && f != "splat") bad_request("format: expected ply or splat");
-    const std::vector<uint8_t> bytes = app.export_bytes(f == "ply" ? edit::SceneFormat::kPly : edit::SceneFormat::kSplat);
+    if (f != "ply" && f != "splat" && f != "spz") bad_request("format: expected ply, splat or spz");
+    const std::vector<uint8_t> bytes = app.export_bytes(output_format_for_path("edited." + f));
     res.set_header("Content-Disposition", "attachment; filename=\"edited." + f + "\"");
     res.set_header("Cache-Control", "no-store");
     res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), "application/octet-stream");

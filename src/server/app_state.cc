@@ -11,7 +11,7 @@
 #include "edit/combine.h"
 #include "edit/remove.h"
 #include "edit/selection_tools.h"
-#include "edit/splat_format.h"
+#include "io/gaussian_file.h"
 #include "edit/transform.h"
 #include "io/image_io.h"
 #include "io/ply.h"
@@ -648,14 +648,14 @@ json AppState::redo_edit() {
 std::vector<uint8_t> AppState::export_bytes(edit::SceneFormat format) const {
   std::shared_lock<std::shared_mutex> lock(edit_mu_);
   try {
-    return format == edit::SceneFormat::kPly ? serialize_ply(edit_.scene()) : edit::serialize_splat(edit_.scene());
+    return serialize_gaussians(edit_.scene(), format);
   } catch (const Error& e) {
     throw HttpError(409, e.what());
   }
 }
 
 json AppState::export_to(const std::string& relative_path) {
-  const std::string path = resolve_output_path(options_.out_dir, relative_path, {".ply", ".splat"});
+  const std::string path = resolve_output_path(options_.out_dir, relative_path, {".ply", ".splat", ".spz"});
   std::vector<std::string> notes;
   size_t count;
   try {

@@ -1,4 +1,4 @@
-#include "edit/splat_format.h"
+#include "io/splat.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "core/sh.h"
 #include "io/atomic_file.h"
 
-namespace isegman::edit {
+namespace isegman {
 namespace {
 
 uint8_t to_byte(double v) { return uint8_t(std::clamp(std::lround(v), 0L, 255L)); }
@@ -106,4 +106,4 @@ void write_splat(const std::string& path, const GaussianScene& scene, std::vecto
   write_file_atomic(path, bytes);
 }
 
-}  // namespace isegman::edit
+}  // namespace isegman
