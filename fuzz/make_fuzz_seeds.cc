@@ -13,7 +13,10 @@
 #include "io/colmap.h"
 #include "io/llff.h"
 #include "io/npy.h"
+#include "io/compressed_ply.h"
+#include "io/gaussian_file.h"
 #include "io/ply.h"
+#include "io/spz.h"
 
 using namespace isegman;
 namespace fs = std::filesystem;
@@ -62,7 +65,26 @@ int main(int argc, char** argv) {
   }
   try {
     fs::path out(argv[1]);
-    for (const char* d : {"ply_fuzzer", "colmap_fuzzer", "npy_fuzzer"}) fs::create_directories(out / d);
+    for (const char* d : {"ply_fuzzer", "colmap_fuzzer", "npy_fuzzer", "spz_fuzzer", "compressed_ply_fuzzer",
+                          "sog_fuzzer", "splat_file_fuzzer"})
+      fs::create_directories(out / d);
+
+    // Splat formats: .spz v2-4 and compressed PLY at SH 0 and 3, .splat.
+    for (int degree : {0, 3}) {
+      const GaussianScene s = tiny_scene(3, degree);
+      for (int v : {2, 3, 4}) {
+        SpzWriteOptions o;
+        o.version = v;
+        const std::string name = "v" + std::to_string(v) + "_sh" + std::to_string(degree) + ".spz";
+        write_file_atomic((out / "spz_fuzzer" / name).string(), serialize_spz(s, o));
+        write_file_atomic((out / "splat_file_fuzzer" / name).string(), serialize_spz(s, o));
+      }
+      const std::string cp = "sh" + std::to_string(degree) + ".compressed.ply";
+      write_file_atomic((out / "compressed_ply_fuzzer" / cp).string(), serialize_compressed_ply(s));
+      write_file_atomic((out / "splat_file_fuzzer" / cp).string(), serialize_compressed_ply(s));
+    }
+    write_file_atomic((out / "splat_file_fuzzer" / "tiny.splat").string(),
+                      serialize_gaussians(tiny_scene(2, 0), SplatFormat::kSplat));
 
     // PLY: binary little-endian at SH 0, 1 and 3, ASCII and big-endian by hand.
     for (int degree : {0, 1, 3})

@@ -2,7 +2,8 @@
 # Builds the libFuzzer harnesses (clang, -fsanitize=fuzzer,address,undefined) in a separate
 # build folder, writes their seed corpora and runs each fuzzer for a while.
 #   scripts/fuzz.sh [seconds per fuzzer, default 120] [fuzzer ...]
-# Fuzzers: ply_fuzzer colmap_fuzzer npy_fuzzer (default: all). Environment:
+# Fuzzers: ply_fuzzer colmap_fuzzer npy_fuzzer spz_fuzzer compressed_ply_fuzzer sog_fuzzer
+# splat_file_fuzzer (default: all). Environment:
 #   FUZZ_BUILD_DIR (default build-fuzz), JOBS (ninja -j, default 1), FUZZ_FORKS (parallel
 #   fuzzing processes per fuzzer, default 1), FUZZ_KEEP_GOING=1 (fork mode that records
 #   crashes, timeouts and OOMs and keeps fuzzing). Crashes land in $FUZZ_BUILD_DIR/artifacts;
@@ -13,7 +14,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-120}"
 shift || true
 fuzzers=("$@")
-[ ${#fuzzers[@]} -gt 0 ] || fuzzers=(ply_fuzzer colmap_fuzzer npy_fuzzer)
+[ ${#fuzzers[@]} -gt 0 ] || fuzzers=(ply_fuzzer colmap_fuzzer npy_fuzzer spz_fuzzer compressed_ply_fuzzer sog_fuzzer splat_file_fuzzer)
 build="${FUZZ_BUILD_DIR:-build-fuzz}"
 jobs="${JOBS:-1}"
 forks="${FUZZ_FORKS:-1}"
@@ -32,6 +33,15 @@ rm -rf "$seeds"
 fixtures=""
 [ -d ../shared/fixtures ] && fixtures="../shared/fixtures"
 "$build/fuzz/make_fuzz_seeds" "$seeds" $fixtures
+# The reference tools' files (tests/data/formats) seed the splat-format fuzzers too.
+for f in tests/data/formats/*; do
+  case "$f" in
+    *.sog) cp "$f" "$seeds/sog_fuzzer/" ;;
+    *.spz) cp "$f" "$seeds/spz_fuzzer/" ;;
+    *.compressed.ply) cp "$f" "$seeds/compressed_ply_fuzzer/" ;;
+  esac
+  cp "$f" "$seeds/splat_file_fuzzer/"
+done
 
 mkdir -p "$build/artifacts"
 export ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=0:abort_on_error=1"

@@ -142,7 +142,7 @@ SplatFormat output_format_for_path(const std::string& path) {
 }
 
 std::vector<uint8_t> serialize_gaussians(const GaussianScene& scene, SplatFormat format, std::vector<std::string>* notes,
-                                         std::vector<uint32_t>* order) {
+                                         std::vector<uint32_t>* order, const GaussianWriteOptions& options) {
   if (order) {
     order->resize(scene.size());
     std::iota(order->begin(), order->end(), 0u);
@@ -151,14 +151,18 @@ std::vector<uint8_t> serialize_gaussians(const GaussianScene& scene, SplatFormat
     case SplatFormat::kPly: return serialize_ply(scene);
     case SplatFormat::kSplat: return serialize_splat(scene, notes);
     case SplatFormat::kCompressedPly: return serialize_compressed_ply(scene, true, order, notes);
-    case SplatFormat::kSpz: return serialize_spz(scene, {}, notes);
+    case SplatFormat::kSpz: {
+      SpzWriteOptions o;
+      if (options.spz_version) o.version = options.spz_version;
+      return serialize_spz(scene, o, notes);
+    }
     case SplatFormat::kSog: throw Error("sog output", "writing .sog is not supported yet; write .spz or .compressed.ply");
   }
   throw Error("output", "unknown format");
 }
 
 void write_gaussians(const std::string& path, const GaussianScene& scene, const std::vector<std::string>& inputs,
-                     std::vector<std::string>* notes, std::vector<uint32_t>* order) {
+                     std::vector<std::string>* notes, std::vector<uint32_t>* order, const GaussianWriteOptions& options) {
   const SplatFormat f = output_format_for_path(path);
   refuse_overwriting_inputs(path, inputs);
   if (scene.size() == 0) throw Error(path, "refusing to write a scene with no Gaussians");
@@ -172,7 +176,7 @@ void write_gaussians(const std::string& path, const GaussianScene& scene, const 
   }
   std::vector<uint8_t> bytes;
   try {
-    bytes = serialize_gaussians(scene, f, notes, order);
+    bytes = serialize_gaussians(scene, f, notes, order, options);
   } catch (const Error& e) {
     throw Error(path, e.what());
   }

@@ -39,15 +39,21 @@ LoadedGaussians load_gaussians(const std::string& path);
 // Output format of a path by its extension; throws naming the supported ones.
 SplatFormat output_format_for_path(const std::string& path);
 
+struct GaussianWriteOptions {
+  int spz_version = 0;  // 0: SpzWriteOptions' default; 2, 3 (gzip) or 4 (zstd)
+};
+
 // Encodes; `notes` gets what the format could not keep; `order` (when given) receives,
 // per written Gaussian, its index in `scene` (formats that reorder: compressed PLY).
 std::vector<uint8_t> serialize_gaussians(const GaussianScene& scene, SplatFormat format,
                                          std::vector<std::string>* notes = nullptr,
-                                         std::vector<uint32_t>* order = nullptr);
+                                         std::vector<uint32_t>* order = nullptr,
+                                         const GaussianWriteOptions& options = {});
 
 // Refuses to replace any of `inputs` or to write an empty scene, then writes atomically
 // in the format of the extension.
 void write_gaussians(const std::string& path, const GaussianScene& scene, const std::vector<std::string>& inputs,
-                     std::vector<std::string>* notes = nullptr, std::vector<uint32_t>* order = nullptr);
+                     std::vector<std::string>* notes = nullptr, std::vector<uint32_t>* order = nullptr,
+                     const GaussianWriteOptions& options = {});
 
 }  // namespace isegman

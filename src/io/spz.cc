@@ -312,6 +312,27 @@ GaussianScene parse_v4(const uint8_t* data, size_t size, const std::string& sour
 
 }  // namespace
 
+GaussianScene flip_y_z(const GaussianScene& scene) {
+  GaussianScene s = scene;
+  const float* flip = sh_flip_signs();
+  const int K = s.coeffs();
+  for (size_t i = 0; i < s.size(); ++i) {
+    s.positions[3 * i + 1] = -s.positions[3 * i + 1];
+    s.positions[3 * i + 2] = -s.positions[3 * i + 2];
+    s.rotations[4 * i + 2] = -s.rotations[4 * i + 2];
+    s.rotations[4 * i + 3] = -s.rotations[4 * i + 3];
+    float* c = s.sh_of(i);
+    for (int k = 1; k < K; ++k)
+      for (int ch = 0; ch < 3; ++ch) c[3 * k + ch] *= flip[k];
+  }
+  if (!s.normals.empty())
+    for (size_t i = 0; i < s.size(); ++i) {
+      s.normals[3 * i + 1] = -s.normals[3 * i + 1];
+      s.normals[3 * i + 2] = -s.normals[3 * i + 2];
+    }
+  return s;
+}
+
 bool looks_like_spz(const uint8_t* data, size_t size) {
   return (size >= 2 && data[0] == 0x1f && data[1] == 0x8b) || (size >= 4 && le32(data) == kMagic);
 }

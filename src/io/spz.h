@@ -20,7 +20,9 @@
 namespace isegman {
 
 struct SpzWriteOptions {
-  int version = 3;  // 2, 3 (gzip, read by every tool) or 4 (zstd streams)
+  // 4 (zstd streams): the newest the reference tools read (splat-transform 2.7.1, the
+  // Niantic library); 3 or 2 (gzip) for older readers.
+  int version = 4;
 };
 
 // True when the bytes start like an .spz (gzip magic or the v4 "NGSP" header).
@@ -33,5 +35,10 @@ GaussianScene parse_spz(const uint8_t* data, size_t size, const std::string& sou
 // Validates the scene and encodes it; `notes` gets what the format could not keep.
 std::vector<uint8_t> serialize_spz(const GaussianScene& scene, const SpzWriteOptions& options = {},
                                    std::vector<std::string>* notes = nullptr);
+
+// The scene with y and z flipped (positions, rotations, SH): RDF <-> RUB, its own
+// inverse. For files from writers that stored PLY axes unconverted (spz-js 1.x, the
+// reference library with coordinate system UNSPECIFIED).
+GaussianScene flip_y_z(const GaussianScene& scene);
 
 }  // namespace isegman
