@@ -32,11 +32,11 @@ int run_convert(const std::vector<std::string>& argv) {
   return 0;
 }
 
-RegisterCommand reg("convert", "rewrite a scene in another splat format (PLY, compressed PLY, .splat, .spz)",
+RegisterCommand reg("convert", "rewrite a scene in another splat format (PLY, compressed PLY, .splat, .spz, .sog)",
                     "isegman convert <scene> --out FILE [--spz-version 2|3|4]\n"
                     "<scene>: a scene directory or a splat file (PLY, compressed PLY, .splat, .spz, .sog);\n"
                     "the format is detected by content. The output format comes from the extension:\n"
-                    "*.ply, *.compressed.ply, *.splat, *.spz. Never replaces its input.\n",
+                    "*.ply, *.compressed.ply, *.splat, *.spz, *.sog. Never replaces its input.\n",
                     run_convert);
 
 }  // namespace

@@ -30,7 +30,8 @@ TEST_P(FixtureFormats, RoundTripsKeepRendersClose) {
   if (!fs::exists(root)) GTEST_SKIP() << "fixture " << root << " not found; skipping real-data test";
   const SceneBundle b = load_scene(root.string());
   const GaussianScene& s = b.gaussians;
-  for (const Case& c : {Case{SplatFormat::kSpz, 33.0}, Case{SplatFormat::kCompressedPly, 38.0}}) {
+  for (const Case& c : {Case{SplatFormat::kSpz, 33.0}, Case{SplatFormat::kCompressedPly, 38.0},
+                        Case{SplatFormat::kSog, 42.0}}) {
     SCOPED_TRACE(splat_format_name(c.format));
     std::vector<uint32_t> order;
     const std::vector<uint8_t> bytes = serialize_gaussians(s, c.format, nullptr, &order);

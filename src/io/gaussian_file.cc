@@ -156,7 +156,7 @@ std::vector<uint8_t> serialize_gaussians(const GaussianScene& scene, SplatFormat
       if (options.spz_version) o.version = options.spz_version;
       return serialize_spz(scene, o, notes);
     }
-    case SplatFormat::kSog: throw Error("sog output", "writing .sog is not supported yet; write .spz or .compressed.ply");
+    case SplatFormat::kSog: return serialize_sog(scene, notes);
   }
   throw Error("output", "unknown format");
 }

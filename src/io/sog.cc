@@ -1,6 +1,7 @@
 #include "io/sog.h"
 
 #include <webp/decode.h>
+#include <webp/encode.h>
 #include <zip.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <numeric>
 
 #include <nlohmann/json.hpp>
 
@@ -31,6 +33,8 @@ Image decode_webp(const std::vector<uint8_t>& bytes, const std::string& what, si
   Image im;
   if (!WebPGetInfo(bytes.data(), bytes.size(), &im.w, &im.h))
     throw Error(source, what + ": not a valid WebP image");
+  if (size_t(im.w) * size_t(im.h) > (size_t(1) << 26))
+    throw Error(source, what + ": " + std::to_string(im.w) + "x" + std::to_string(im.h) + " pixels is too large");
   if (size_t(im.w) * size_t(im.h) < count)
     throw Error(source, what + ": " + std::to_string(im.w) + "x" + std::to_string(im.h) + " pixels, fewer than the " +
                             std::to_string(count) + " Gaussians of meta.json");
@@ -68,7 +72,7 @@ GaussianScene decode(const FileGetter& get, const std::string& source) {
   if (!meta["version"].is_number_integer() || meta["version"].get<long long>() != 2)
     throw Error(source, "unsupported SOG version " + meta["version"].dump() + " (reads version 2)");
   if (!meta.contains("count") || !meta["count"].is_number_unsigned() || meta["count"].get<unsigned long long>() == 0 ||
-      meta["count"].get<unsigned long long>() > (1ull << 28))
+      meta["count"].get<unsigned long long>() > (1ull << 26))
     throw Error(source, "meta.json: count must be a positive integer");
   const size_t n = meta["count"].get<size_t>();
   for (const char* f : {"means", "scales", "quats", "sh0"})
@@ -228,6 +232,308 @@ GaussianScene read_sog_dir(const std::string& dir) {
         return read_file_bytes((fs::path(dir) / name).string());
       },
       dir);
+}
+
+namespace {
+
+// 256 centroids for `values` by 1-D k-means on sorted data. Half start at quantiles, half
+// evenly over the range: rare values in the tails (the few large Gaussians of a scene)
+// matter on screen, and quantiles alone leave them far from any centroid.
+std::vector<float> codebook_kmeans(std::vector<float> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  std::vector<double> c(256);
+  for (int k = 0; k < 128; ++k) {
+    c[k] = v[std::min(n - 1, size_t((k + 0.5) / 128.0 * n))];
+    c[128 + k] = v.front() + (double(v.back()) - v.front()) * k / 127.0;
+  }
+  std::sort(c.begin(), c.end());
+  for (int it = 0; it < 12; ++it) {
+    std::vector<double> sum(256, 0.0);
+    std::vector<size_t> cnt(256, 0);
+    size_t k = 0;
+    for (size_t i = 0; i < n; ++i) {
+      while (k + 1 < 256 && double(v[i]) > 0.5 * (c[k] + c[k + 1])) ++k;
+      sum[k] += v[i];
+      ++cnt[k];
+    }
+    for (int j = 0; j < 256; ++j)
+      if (cnt[j]) c[j] = sum[j] / double(cnt[j]);
+    std::sort(c.begin(), c.end());
+  }
+  return std::vector<float>(c.begin(), c.end());
+}
+
+uint8_t nearest(const std::vector<float>& cb, float x) {
+  const auto it = std::lower_bound(cb.begin(), cb.end(), x);
+  size_t k = size_t(it - cb.begin());
+  if (k == cb.size()) return uint8_t(k - 1);
+  if (k > 0 && (x - cb[k - 1]) <= (cb[k] - x)) --k;
+  return uint8_t(k);
+}
+
+std::vector<uint8_t> encode_webp(const std::vector<uint8_t>& rgba, int w, int h) {
+  WebPConfig config;
+  WebPPicture pic;
+  if (!WebPConfigInit(&config) || !WebPPictureInit(&pic)) throw Error("sog output", "libwebp version mismatch");
+  config.lossless = 1;
+  config.exact = 1;  // keep RGB under alpha 0 (sh0 stores colours there)
+  config.method = 4;
+  config.quality = 75;
+  pic.use_argb = 1;
+  pic.width = w;
+  pic.height = h;
+  WebPMemoryWriter writer;
+  WebPMemoryWriterInit(&writer);
+  pic.writer = WebPMemoryWrite;
+  pic.custom_ptr = &writer;
+  if (!WebPPictureImportRGBA(&pic, rgba.data(), w * 4)) {
+    WebPPictureFree(&pic);
+    throw Error("sog output", "WebP import failed");
+  }
+  const int ok = WebPEncode(&config, &pic);
+  WebPPictureFree(&pic);
+  std::vector<uint8_t> out(writer.mem, writer.mem + writer.size);
+  WebPMemoryWriterClear(&writer);
+  if (!ok) throw Error("sog output", "WebP encoding failed");
+  return out;
+}
+
+std::vector<uint8_t> zip_files(const std::vector<std::pair<std::string, std::vector<uint8_t>>>& files) {
+  zip_error_t err;
+  zip_error_init(&err);
+  zip_source_t* src = zip_source_buffer_create(nullptr, 0, 0, &err);
+  if (!src) throw Error("sog output", "cannot create a zip buffer");
+  zip_t* z = zip_open_from_source(src, ZIP_TRUNCATE, &err);
+  if (!z) {
+    zip_source_free(src);
+    throw Error("sog output", "cannot create a zip archive");
+  }
+  zip_source_keep(src);
+  for (const auto& f : files) {
+    zip_source_t* fs = zip_source_buffer(z, f.second.data(), f.second.size(), 0);
+    const zip_int64_t idx = fs ? zip_file_add(z, f.first.c_str(), fs, ZIP_FL_ENC_UTF_8) : -1;
+    if (idx < 0) {
+      if (fs) zip_source_free(fs);
+      zip_discard(z);
+      zip_source_free(src);
+      throw Error("sog output", "cannot add " + f.first + " to the zip archive");
+    }
+    // WebP is already compressed; meta.json (codebooks as text) deflates well.
+    zip_set_file_compression(z, zip_uint64_t(idx), f.first == "meta.json" ? ZIP_CM_DEFLATE : ZIP_CM_STORE, 0);
+  }
+  if (zip_close(z) != 0) {
+    zip_discard(z);
+    zip_source_free(src);
+    throw Error("sog output", "cannot finish the zip archive");
+  }
+  zip_stat_t st;
+  std::vector<uint8_t> out;
+  if (zip_source_stat(src, &st) == 0 && zip_source_open(src) == 0) {
+    out.resize(size_t(st.size));
+    const zip_int64_t got = zip_source_read(src, out.data(), out.size());
+    zip_source_close(src);
+    if (got != zip_int64_t(out.size())) out.clear();
+  }
+  zip_source_free(src);
+  if (out.empty()) throw Error("sog output", "cannot read the zip archive back");
+  return out;
+}
+
+// Palette of SH vectors (dim floats each) with at most 65536 entries; `labels` gets each
+// Gaussian's entry.
+std::vector<float> sh_palette(const GaussianScene& s, int dim, std::vector<uint32_t>& labels, bool& exact) {
+  const size_t n = s.size();
+  auto vec = [&](size_t i, int d) { return s.sh_of(i)[3 + d]; };  // coefficient-major, channel inner
+  labels.resize(n);
+  if (n <= 65536) {
+    exact = true;
+    std::vector<float> p(n * dim);
+    for (size_t i = 0; i < n; ++i) {
+      labels[i] = uint32_t(i);
+      for (int d = 0; d < dim; ++d) p[i * dim + d] = vec(i, d);
+    }
+    return p;
+  }
+  exact = false;
+  // Principal direction of the SH vectors (power iteration), to order them.
+  std::vector<double> mean(dim, 0.0), dir(dim, 1.0 / std::sqrt(double(dim)));
+  for (size_t i = 0; i < n; ++i)
+    for (int d = 0; d < dim; ++d) mean[d] += vec(i, d) / double(n);
+  for (int it = 0; it < 8; ++it) {
+    std::vector<double> next(dim, 0.0);
+    for (size_t i = 0; i < n; i += 7) {
+      double dot = 0;
+      for (int d = 0; d < dim; ++d) dot += (vec(i, d) - mean[d]) * dir[d];
+      for (int d = 0; d < dim; ++d) next[d] += dot * (vec(i, d) - mean[d]);
+    }
+    double nn = 0;
+    for (double x : next) nn += x * x;
+    nn = std::sqrt(nn);
+    if (!(nn > 0)) break;
+    for (int d = 0; d < dim; ++d) dir[d] = next[d] / nn;
+  }
+  std::vector<double> proj(n);
+  for (size_t i = 0; i < n; ++i) {
+    double dot = 0;
+    for (int d = 0; d < dim; ++d) dot += (vec(i, d) - mean[d]) * dir[d];
+    proj[i] = dot;
+  }
+  std::vector<uint32_t> ord(n);
+  std::iota(ord.begin(), ord.end(), 0u);
+  std::sort(ord.begin(), ord.end(), [&](uint32_t a, uint32_t b) { return proj[a] < proj[b]; });
+  const size_t P = 65536;
+  std::vector<float> c(P * dim);
+  for (size_t k = 0; k < P; ++k) {  // start: evenly spaced along the principal direction
+    const size_t i = ord[(k * n) / P];
+    for (int d = 0; d < dim; ++d) c[k * dim + d] = vec(i, d);
+  }
+  // Gaussian at rank r starts next to centroid r * P / n; search a window around it.
+  const long W = 48;
+  for (int it = 0; it < 3; ++it) {
+    for (size_t r = 0; r < n; ++r) {
+      const size_t i = ord[r];
+      const long centre = long((r * P) / n);
+      double best = 1e300;
+      uint32_t bk = uint32_t(centre);
+      for (long k = std::max(0L, centre - W); k <= std::min(long(P) - 1, centre + W); ++k) {
+        double dist = 0;
+        for (int d = 0; d < dim && dist < best; ++d) {
+          const double e = vec(i, d) - c[k * dim + d];
+          dist += e * e;
+        }
+        if (dist < best) {
+          best = dist;
+          bk = uint32_t(k);
+        }
+      }
+      labels[i] = bk;
+    }
+    std::vector<double> sum(P * dim, 0.0);
+    std::vector<uint32_t> cnt(P, 0);
+    for (size_t i = 0; i < n; ++i) {
+      ++cnt[labels[i]];
+      for (int d = 0; d < dim; ++d) sum[labels[i] * dim + d] += vec(i, d);
+    }
+    for (size_t k = 0; k < P; ++k)
+      if (cnt[k])
+        for (int d = 0; d < dim; ++d) c[k * dim + d] = float(sum[k * dim + d] / cnt[k]);
+  }
+  return c;
+}
+
+}  // namespace
+
+std::vector<uint8_t> serialize_sog(const GaussianScene& scene, std::vector<std::string>* notes) {
+  scene.validate("sog output");
+  const size_t n = scene.size();
+  if (n == 0) throw Error("sog output", "the scene has no Gaussians");
+  const int w = int(std::ceil(std::sqrt(double(n)))), h = int((n + w - 1) / w);
+  auto image = [&]() { return std::vector<uint8_t>(size_t(w) * h * 4, 0); };
+  json meta;
+  meta["version"] = 2;
+  meta["asset"] = {{"generator", "isegman"}};
+  meta["count"] = n;
+  meta["antialias"] = false;
+  std::vector<std::pair<std::string, std::vector<uint8_t>>> files;
+
+  // Means: 16-bit fractions of sign(x) ln(|x| + 1) between per-axis mins and maxs.
+  double mins[3] = {1e300, 1e300, 1e300}, maxs[3] = {-1e300, -1e300, -1e300};
+  auto logt = [](double x) { return x < 0 ? -std::log1p(-x) : std::log1p(x); };
+  for (size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) {
+      const double v = logt(scene.positions[3 * i + a]);
+      mins[a] = std::min(mins[a], v);
+      maxs[a] = std::max(maxs[a], v);
+    }
+  std::vector<uint8_t> lo = image(), hi = image();
+  for (size_t i = 0; i < n; ++i) {
+    for (int a = 0; a < 3; ++a) {
+      const double range = maxs[a] > mins[a] ? maxs[a] - mins[a] : 1.0;
+      const double t = (logt(scene.positions[3 * i + a]) - mins[a]) / range;
+      const uint32_t q = uint32_t(std::clamp(std::lround(t * 65535.0), 0L, 65535L));
+      lo[4 * i + a] = uint8_t(q & 255);
+      hi[4 * i + a] = uint8_t(q >> 8);
+    }
+    lo[4 * i + 3] = hi[4 * i + 3] = 255;
+  }
+  meta["means"] = {{"mins", json::array({mins[0], mins[1], mins[2]})}, {"maxs", json::array({maxs[0], maxs[1], maxs[2]})},
+                   {"files", json::array({"means_l.webp", "means_u.webp"})}};
+  files.push_back({"means_l.webp", encode_webp(lo, w, h)});
+  files.push_back({"means_u.webp", encode_webp(hi, w, h)});
+
+  // Quaternions (w x y z): the three smaller components, the largest made positive.
+  std::vector<uint8_t> qi = image();
+  for (size_t i = 0; i < n; ++i) {
+    const Quat q = scene.rotation(i).normalized();
+    double v[4] = {q.w, q.x, q.y, q.z};
+    int largest = 0;
+    for (int k = 1; k < 4; ++k)
+      if (std::fabs(v[k]) > std::fabs(v[largest])) largest = k;
+    if (v[largest] < 0)
+      for (double& x : v) x = -x;
+    for (int k = 0, j = 0; k < 4; ++k)
+      if (k != largest)
+        qi[4 * i + j++] = uint8_t(std::clamp(std::lround((v[k] * M_SQRT2 * 0.5 + 0.5) * 255.0), 0L, 255L));
+    qi[4 * i + 3] = uint8_t(252 + largest);
+  }
+  meta["quats"] = {{"files", json::array({"quats.webp"})}};
+  files.push_back({"quats.webp", encode_webp(qi, w, h)});
+
+  // Scales and colours through 256-entry codebooks.
+  const std::vector<float> scb = codebook_kmeans(scene.scales);
+  std::vector<uint8_t> si = image();
+  for (size_t i = 0; i < n; ++i) {
+    for (int a = 0; a < 3; ++a) si[4 * i + a] = nearest(scb, scene.scales[3 * i + a]);
+    si[4 * i + 3] = 255;
+  }
+  meta["scales"] = {{"codebook", scb}, {"files", json::array({"scales.webp"})}};
+  files.push_back({"scales.webp", encode_webp(si, w, h)});
+  std::vector<float> dc(3 * n);
+  for (size_t i = 0; i < n; ++i)
+    for (int ch = 0; ch < 3; ++ch) dc[3 * i + ch] = scene.sh_of(i)[ch];
+  const std::vector<float> ccb = codebook_kmeans(dc);
+  std::vector<uint8_t> ci = image();
+  for (size_t i = 0; i < n; ++i) {
+    for (int ch = 0; ch < 3; ++ch) ci[4 * i + ch] = nearest(ccb, dc[3 * i + ch]);
+    ci[4 * i + 3] = uint8_t(std::clamp(std::lround(255.0 / (1.0 + std::exp(-double(scene.opacity[i])))), 0L, 255L));
+  }
+  meta["sh0"] = {{"codebook", ccb}, {"files", json::array({"sh0.webp"})}};
+  files.push_back({"sh0.webp", encode_webp(ci, w, h)});
+
+  if (scene.sh_degree > 0) {
+    const int per = scene.coeffs() - 1, dim = 3 * per;
+    std::vector<uint32_t> labels;
+    bool exact = false;
+    const std::vector<float> pal = sh_palette(scene, dim, labels, exact);
+    const size_t P = pal.size() / dim;
+    const std::vector<float> ncb = codebook_kmeans(pal);
+    const int cw = 64 * per, ch_rows = int((P + 63) / 64);
+    std::vector<uint8_t> cent(size_t(cw) * ch_rows * 4, 0);
+    for (size_t k = 0; k < P; ++k)
+      for (int j = 0; j < per; ++j) {
+        uint8_t* p = &cent[4 * ((k / 64) * cw + (k % 64) * per + j)];
+        for (int c = 0; c < 3; ++c) p[c] = nearest(ncb, pal[k * dim + 3 * j + c]);
+        p[3] = 255;
+      }
+    std::vector<uint8_t> li = image();
+    for (size_t i = 0; i < n; ++i) {
+      li[4 * i] = uint8_t(labels[i] & 255);
+      li[4 * i + 1] = uint8_t(labels[i] >> 8);
+      li[4 * i + 3] = 255;
+    }
+    meta["shN"] = {{"count", P}, {"bands", scene.sh_degree}, {"codebook", ncb},
+                   {"files", json::array({"shN_centroids.webp", "shN_labels.webp"})}};
+    files.push_back({"shN_centroids.webp", encode_webp(cent, cw, ch_rows)});
+    files.push_back({"shN_labels.webp", encode_webp(li, w, h)});
+    if (notes && !exact)
+      notes->push_back(".sog: SH bands of " + std::to_string(n) +
+                       " Gaussians share a 65536-entry palette (approximate k-means)");
+  }
+  if (notes && !scene.extras.empty()) notes->push_back(".sog has no room for extra properties: they were dropped");
+  const std::string m = meta.dump();
+  files.insert(files.begin(), {"meta.json", std::vector<uint8_t>(m.begin(), m.end())});
+  return zip_files(files);
 }
 
 }  // namespace isegman

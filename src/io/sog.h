@@ -28,4 +28,11 @@ GaussianScene parse_sog_zip(const uint8_t* data, size_t size, const std::string&
 // A folder holding meta.json and its images.
 GaussianScene read_sog_dir(const std::string& dir);
 
+// Encodes as a zipped .sog (version 2): 256-entry codebooks by 1-D k-means, WebP lossless
+// images (exact RGB under transparent pixels). SH bands: one palette entry per Gaussian
+// up to 65536 Gaussians (only the codebook quantises them); beyond, a 65536-entry k-means
+// palette whose nearest-centroid search is limited to centroids adjacent along the SH
+// vectors' principal direction. `notes` says which.
+std::vector<uint8_t> serialize_sog(const GaussianScene& scene, std::vector<std::string>* notes = nullptr);
+
 }  // namespace isegman

@@ -57,6 +57,9 @@ node "$oracles/compare_ply.mjs" "$work/source.ply" "$work/isegman_v2.spz.back.pl
 "$isegman" convert "$work/source.ply" --out "$work/isegman.compressed.ply" >/dev/null
 st "$work/isegman.compressed.ply" "$work/isegman.compressed.ply.back.ply"
 check "isegman.compressed.ply" 0.0025,0.002,0.002,0.005,0.007,0.0157
+"$isegman" convert "$work/source.ply" --out "$work/isegman.sog" >/dev/null
+st "$work/isegman.sog" "$work/isegman.sog.back.ply"
+check "isegman.sog" 0.0005,0.03,0.002,0.04,0.02,0.01
 "$isegman" convert "$work/source.ply" --out "$work/isegman.splat" >/dev/null
 st "$work/isegman.splat" "$work/isegman.splat.back.ply"
 check "isegman.splat" 0.000001,0.00001,0.002,0.03,0.007,1e9
