@@ -177,7 +177,10 @@ std::vector<uint8_t> zip_member(zip_t* z, const std::string& name, const std::st
   zip_stat_init(&st);
   if (zip_stat_index(z, zip_uint64_t(idx), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE))
     throw Error(source, "cannot read the size of '" + name + "' in the .sog archive");
-  if (st.size > (1ull << 30)) throw Error(source, "'" + name + "' in the .sog archive is larger than 1 GiB");
+  if (st.size > (1ull << 28)) throw Error(source, "'" + name + "' in the .sog archive is larger than 256 MiB");
+  // Deflate expands at most ~1032:1: a larger claim is a corrupt directory.
+  if ((st.valid & ZIP_STAT_COMP_SIZE) && st.size > st.comp_size * 1100 + (1u << 16))
+    throw Error(source, "'" + name + "' in the .sog archive claims more data than it can hold");
   zip_file_t* f = zip_fopen_index(z, zip_uint64_t(idx), 0);
   if (!f) throw Error(source, "cannot open '" + name + "' in the .sog archive: " + zip_strerror(z));
   std::vector<uint8_t> out(size_t(st.size));

@@ -277,6 +277,11 @@ GaussianScene parse_v4(const uint8_t* data, size_t size, const std::string& sour
   const unsigned needed = sizes[5] ? 6 : 5;
   if (streams < needed)
     throw Error(source, "corrupt .spz: " + std::to_string(streams) + " streams, " + std::to_string(needed) + " needed");
+  // zstd cannot expand beyond 32768:1 (a 4-byte RLE block per 128 KiB), so the file size
+  // bounds the positions stream (9 bytes a Gaussian) and with it what is allocated. (The
+  // reference reader assumes 1024:1, which refuses scenes of identical Gaussians.)
+  if (uint64_t(p.n) * 9 > uint64_t(size) * 32768 + 4096)
+    throw Error(source, "corrupt .spz: " + std::to_string(p.n) + " Gaussians cannot fit in " + std::to_string(size) + " bytes");
   if (toc < kV4Header || toc > size || (size - toc) / 16 < streams)
     throw Error(source, "truncated .spz: the table of contents lies outside the file");
   if (flags & kFlagExtensions && toc > kV4Header && notes) notes->push_back(source + ": .spz extension records ignored");
@@ -291,7 +296,11 @@ GaussianScene parse_v4(const uint8_t* data, size_t size, const std::string& sour
       if (usize != want)
         throw Error(source, "corrupt .spz: stream " + std::to_string(k) + " holds " + std::to_string(usize) +
                                 " bytes, " + std::to_string(want) + " expected for " + std::to_string(p.n) + " Gaussians");
-      if (want > uint64_t(csize) * 1100 + 4096)  // zstd cannot expand more than this
+      const unsigned long long declared = ZSTD_getFrameContentSize(data + off, size_t(csize));
+      if (declared != ZSTD_CONTENTSIZE_UNKNOWN && declared != want)
+        throw Error(source, "corrupt .spz: stream " + std::to_string(k) + " is not a zstd frame of " +
+                                std::to_string(want) + " bytes");
+      if (declared == ZSTD_CONTENTSIZE_UNKNOWN && want > uint64_t(csize) * 32768 + 4096)
         throw Error(source, "corrupt .spz: stream " + std::to_string(k) + " is too small for its size");
       out[k].resize(size_t(want));
       const size_t got = ZSTD_decompress(out[k].data(), out[k].size(), data + off, size_t(csize));
