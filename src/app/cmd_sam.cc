@@ -96,6 +96,12 @@ int run_sam(const std::vector<std::string>& argv) {
   std::printf("image:          %s (%dx%d)\n", image_path.c_str(), img.width, img.height);
   std::printf("iou prediction: %.4f (mask %d of the decoder's outputs)\n", r.score, r.mask_index);
   std::printf("mask:           %zu pixels (%.1f %%) -> %s\n", on, 100.0 * on / r.mask.data.size(), out.c_str());
+  for (size_t c = 0; c < r.candidates.size(); ++c) {  // every candidate, for inspection
+    size_t px = 0;
+    for (float v : r.candidates[c].data) px += v > 0.5f;
+    std::printf("candidate %zu:    iou prediction %.4f, %zu pixels (%.1f %%)\n", c, r.candidate_scores[c], px,
+                100.0 * px / r.mask.data.size());
+  }
   std::printf("timings:        load %.0f ms, preprocess %.1f ms, encoder %.1f ms%s, decoder %.1f ms\n", t_load,
               enc.preprocess_ms, enc.encoder_ms, enc.from_cache ? " (cached embedding)" : "", dec_ms);
   return 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
 #include "segment/epipolar.h"
@@ -60,8 +61,11 @@ Propagated propagate(const SegmentView& from, const ViewClick& click, const Segm
     pixel_of(to, pu, pv, x, y);
     const double surface = to.depth.at(x, y);
     if (to.alpha.at(x, y) >= opt.min_alpha && z > surface * (1 + opt.occlusion_tolerance)) {
-      if (opt.mode == PropagationMode::Depth) {
-        out.reason = "occluded";
+      if (opt.mode == PropagationMode::Depth || !opt.hidden_fallback) {
+        char why[128];
+        std::snprintf(why, sizeof why, "hidden: the clicked point lies at depth %.3g behind the surface at %.3g", z,
+                      surface);
+        out.reason = why;
         return out;
       }
       // Hybrid: the clicked surface point is hidden here, but the object may still show

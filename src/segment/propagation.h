@@ -28,6 +28,10 @@ struct PropagationOptions {
   double window_cells = 2.0;     // hybrid: search radius around the reprojection, in grid cells
   double occlusion_tolerance = 0.05;  // relative depth slack before a point counts as hidden
   double min_alpha = 0.5;        // a pixel with less accumulated alpha has no surface
+  // Hybrid, when the clicked point is hidden in a view: false (default) sends no click
+  // there (the view may still be prompted from the 3D selection); true searches the whole
+  // epipolar line as the paper does, which often lands on the occluder.
+  bool hidden_fallback = false;
 };
 
 struct Propagated {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "models/sam.h"
+#include "segment/depth_layers.h"
 #include "segment/propagation.h"
 #include "segment/views.h"
 #include "segment/votes.h"
@@ -23,6 +24,23 @@ struct SessionOptions {
   bool reuse_previous_mask = true; // feed each view's previous low-res mask back to SAM
   int threads = 0;
   int sam_workers = 2;             // views decoded by SAM at the same time
+
+  // Beyond the paper; each can be switched off (isegman ablation measures them).
+  // Gate each mask's votes to the target's depth layer (no vote for what a gap shows).
+  bool depth_layers = true;
+  DepthLayerOptions layer_options;
+  // IIM by agreement: a mask must hold most of the selection rendered in its view and be
+  // partly covered by it (both directions), instead of merely touching it.
+  bool agreement_inspection = true;
+  double min_selection_inside = 0.5;   // share of the rendered selection inside the mask
+  double min_mask_on_selection = 0.1;  // share of the mask the rendered selection covers
+  int min_coverage_pixels = 30;        // less rendered selection is no evidence
+  // Among SAM's candidate masks, take the one most consistent with the 3D selection.
+  bool choose_candidate = true;
+  // Views no click reached (point out of frame or hidden) are prompted from the selection
+  // rendered in them (a box and an interior point, as SA3D does), for this many rounds.
+  int selection_prompt_rounds = 2;
+  double min_prompt_iou = 0.5;         // agreement a prompted mask needs to vote
 };
 
 struct UserClick {
@@ -42,13 +60,22 @@ struct ViewState {
   std::vector<float> low_res;          // SAM low-res logits, for the next round
   ViewStatus status = ViewStatus::NoClicks;
   double overlap = 0;                  // IIM: share of the mask covered by the selection
+  double selection_inside = 0;         // IIM: share of the rendered selection inside the mask
+  double iou = 0;                      // IIM: IoU of the mask and the rendered selection
+  bool from_selection = false;         // prompted from the rendered selection, not a click
+  int candidate = 0;                   // which of SAM's candidates was used
+  int depth_layers = 0;                // depth layers the mask's content splits into
+  double gated_share = 0;              // share of the mask's weight outside the target's layer
   ViewVotes positive;                  // P-votes of the mask (when accepted)
+  ViewVotes neutral;                   // depth-gated weights that count neither way
+  std::shared_ptr<const models::SegmentResult> sam;  // SAM's answer (every candidate), shared with history
 };
 
 struct RoundReport {
   double ms_propagation = 0, ms_sam = 0, ms_voting = 0;
-  int views_segmented = 0, accepted = 0, dropped = 0;
+  int views_segmented = 0, accepted = 0, dropped = 0, prompted = 0;
   size_t selected = 0;
+  bool duplicate = false;  // the click repeated an earlier one: nothing changed
 };
 
 class Session {

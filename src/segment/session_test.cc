@@ -110,8 +110,13 @@ TEST(SegmentationEndToEnd, UndoRestoresTheSelectionBitExactly) {
   const VoteAccumulator votes = s->votes();
   const int v = view_of_camera(*s, cam);
   // A second, negative click on the ground changes the state...
+  // The same click again is no new information: nothing changes and it is not a round.
+  const RoundReport again = s->click(v, {click.x + 0.5, click.y + 0.5, 1});
+  EXPECT_TRUE(again.duplicate);
+  EXPECT_EQ(s->selection(), first);
+  EXPECT_EQ(s->clicks().size(), 1u);
   s->click(v, {20.5, double(s->views()[size_t(v)].camera.height) - 20.5, 0});
-  s->click(v, {click.x + 0.5, click.y + 0.5, 1});
+  s->click(v, {click.x + 3.5, click.y + 0.5, 1});
   EXPECT_FALSE(s->votes() == votes);
   // ...and undoing both restores it exactly.
   ASSERT_TRUE(s->undo());
