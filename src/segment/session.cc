@@ -151,10 +151,11 @@ int choose(const models::SegmentResult& r, const Image* coverage, int min_pixels
 
 void take_candidate(ViewState& vs, const models::SegmentResult& r, int c) {
   const Image& m = r.candidates.empty() ? r.mask : r.candidates[size_t(c)];
+  const Image* cut = vs.sam_negative ? &vs.sam_negative->mask : nullptr;
   vs.mask.resize(m.data.size());
   vs.mask_pixels = 0;
   for (size_t i = 0; i < m.data.size(); ++i) {
-    vs.mask[i] = m.data[i] > 0.5f;
+    vs.mask[i] = m.data[i] > 0.5f && !(cut && cut->data[i] > 0.5f);
     vs.mask_pixels += vs.mask[i];
   }
   vs.candidate = c;
@@ -244,19 +245,24 @@ RoundReport Session::run_round(State& next, const State& prev) {
     int n = models::threads_of_this_thread();
     ~RestoreThreads() { models::limit_threads_of_this_thread(n); }
   };
+  // Negative clicks as regions: what SAM segments at a negative click (with the positive
+  // clicks as its negatives) is cut from the view's mask, so a negative click removes
+  // what it points at and leaves the rest of SAM's mask alone.
+  std::vector<std::shared_ptr<const models::SegmentResult>> negatives(V);
   auto decode_views = [&](const std::vector<size_t>& which, const std::vector<std::vector<models::Click>>& prompts,
-                          const std::vector<const std::vector<float>*>& previous) {
+                          const std::vector<const std::vector<float>*>& previous,
+                          std::vector<std::shared_ptr<const models::SegmentResult>>& into) {
     RestoreThreads restore_threads;
     parallel_for(which.size(), workers, [&](int, size_t i) {
       if (workers > 1) models::limit_threads_of_this_thread(1);
-      results[which[i]] = std::make_shared<const models::SegmentResult>(
+      into[which[i]] = std::make_shared<const models::SegmentResult>(
           sam_->decode(views_[which[i]].embedding, prompts[i], previous[i]));
       ++segmented;
     });
   };
   {
-    std::vector<size_t> which;
-    std::vector<std::vector<models::Click>> prompts;
+    std::vector<size_t> which, which_neg;
+    std::vector<std::vector<models::Click>> prompts, prompts_neg;
     std::vector<const std::vector<float>*> previous;
     for (size_t k = 0; k < V; ++k) {
       ViewState& vs = fresh[k];
@@ -266,23 +272,45 @@ RoundReport Session::run_round(State& next, const State& prev) {
         continue;
       }
       vs.status = ViewStatus::Skipped;  // until inspection decides
-      std::vector<models::Click> clicks;
-      for (const ViewClick& c : vs.clicks) clicks.push_back({c.u - 0.5, c.v - 0.5, c.label});  // SAM: pixel indices
-      const ViewState& old = prev.views[k];
-      // Reuse last round's answer when this view's clicks did not change.
-      bool same = old.sam && !old.from_selection && old.clicks.size() == vs.clicks.size();
-      for (size_t i = 0; same && i < vs.clicks.size(); ++i)
-        same = old.clicks[i].u == vs.clicks[i].u && old.clicks[i].v == vs.clicks[i].v &&
-               old.clicks[i].label == vs.clicks[i].label;
-      if (same) {
-        results[k] = old.sam;
-        continue;
+      std::vector<models::Click> clicks, inverted;
+      for (const ViewClick& c : vs.clicks) {
+        const models::Click sc{c.u - 0.5, c.v - 0.5, c.label};  // SAM: pixel indices
+        if (c.label == 1 || !o.negative_regions) clicks.push_back(sc);
+        inverted.push_back({sc.x, sc.y, 1 - c.label});
       }
-      which.push_back(k);
-      prompts.push_back(std::move(clicks));
-      previous.push_back(o.reuse_previous_mask && !old.low_res.empty() && !old.from_selection ? &old.low_res : nullptr);
+      const bool has_negative = o.negative_regions && inverted.size() > clicks.size();
+      const ViewState& old = prev.views[k];
+      // Reuse last round's answers for what did not change in this view.
+      auto same_clicks = [&](bool positives_only) {
+        std::vector<const ViewClick*> a, b;
+        for (const ViewClick& c : old.clicks)
+          if (!positives_only || c.label == 1) a.push_back(&c);
+        for (const ViewClick& c : vs.clicks)
+          if (!positives_only || c.label == 1) b.push_back(&c);
+        if (a.size() != b.size()) return false;
+        for (size_t i = 0; i < a.size(); ++i)
+          if (a[i]->u != b[i]->u || a[i]->v != b[i]->v || a[i]->label != b[i]->label) return false;
+        return true;
+      };
+      const bool fresh_old = old.sam && !old.from_selection;
+      if (fresh_old && same_clicks(o.negative_regions)) {
+        results[k] = old.sam;
+      } else {
+        which.push_back(k);
+        prompts.push_back(std::move(clicks));
+        previous.push_back(o.reuse_previous_mask && fresh_old && !old.low_res.empty() ? &old.low_res : nullptr);
+      }
+      if (has_negative) {
+        if (old.sam_negative && same_clicks(false)) {
+          negatives[k] = old.sam_negative;
+        } else {
+          which_neg.push_back(k);
+          prompts_neg.push_back(std::move(inverted));
+        }
+      }
     }
-    decode_views(which, prompts, previous);
+    decode_views(which, prompts, previous, results);
+    decode_views(which_neg, prompts_neg, std::vector<const std::vector<float>*>(which_neg.size(), nullptr), negatives);
   }
   rep.views_segmented = segmented;
   rep.ms_sam = ms_since(t0);
@@ -332,6 +360,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     if (vs.status == ViewStatus::NoClicks) continue;
     const models::SegmentResult& r = *results[k];
     vs.sam = results[k];
+    vs.sam_negative = negatives[k];
     const bool inspect = !first && o.inspection;
     std::vector<bool> current;
     Image coverage;
@@ -400,7 +429,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     }
     if (which.empty()) break;
     auto ts = Clock::now();
-    decode_views(which, prompts, std::vector<const std::vector<float>*>(which.size(), nullptr));
+    decode_views(which, prompts, std::vector<const std::vector<float>*>(which.size(), nullptr), results);
     ms_sam_later += ms_since(ts);
     int accepted = 0;
     for (size_t i = 0; i < which.size(); ++i) {

@@ -41,6 +41,9 @@ struct SessionOptions {
   // rendered in them (a box and an interior point, as SA3D does), for this many rounds.
   int selection_prompt_rounds = 2;
   double min_prompt_iou = 0.5;         // agreement a prompted mask needs to vote
+  // Negative clicks cut what SAM segments at them from the mask, instead of being given
+  // to SAM as negative points (which reshapes the whole mask unpredictably).
+  bool negative_regions = true;
 };
 
 struct UserClick {
@@ -69,6 +72,7 @@ struct ViewState {
   ViewVotes positive;                  // P-votes of the mask (when accepted)
   ViewVotes neutral;                   // depth-gated weights that count neither way
   std::shared_ptr<const models::SegmentResult> sam;  // SAM's answer (every candidate), shared with history
+  std::shared_ptr<const models::SegmentResult> sam_negative;  // the region of the negative clicks, cut from the mask
 };
 
 struct RoundReport {
