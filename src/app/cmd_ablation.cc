@@ -44,12 +44,12 @@ int run_ablation(const std::vector<std::string>& argv) {
       {"hybrid, IIM, 10% views", segment::PropagationMode::Hybrid, true, "10%"},
   };
   // The clicks: one per object, in the first camera that sees its centre.
-  std::vector<std::pair<int, segment::PromptClick>> clicks;
+  std::vector<std::pair<int, Click>> clicks;
   for (size_t o = 0; o < demo.objects.size(); ++o) {
     int cam = 0;
-    segment::PromptClick c;
-    if (!demo_click(demo, int(o), cam, c.x, c.y)) throw Error("ablation: no camera sees " + demo.objects[o].name);
-    clicks.push_back({cam, c});
+    double x = 0, y = 0;  // a pixel
+    if (!demo_click(demo, int(o), cam, x, y)) throw Error("ablation: no camera sees " + demo.objects[o].name);
+    clicks.push_back({cam, pixel_centre_click(x, y, 1)});
   }
   std::printf("synthetic scene: %zu Gaussians, %zu objects, %zu cameras at %dx%d; one click per object\n\n",
               demo.bundle.gaussians.size(), demo.objects.size(), demo.bundle.cameras.size(), opt.width, opt.height);

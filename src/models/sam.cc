@@ -406,8 +406,10 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
   std::vector<float> coords, labels;
   for (const Click& c : clicks) {
     if (c.label != 0 && c.label != 1) throw Error("SAM: click label must be 1 (positive) or 0 (negative)");
-    coords.push_back(float(c.x * sx));
-    coords.push_back(float(c.y * sy));
+    // SAM takes pixel indices (its prompt encoder adds 0.5 to reach the pixel centre);
+    // our clicks are continuous (core/click.h): the centre of pixel i is i + 0.5.
+    coords.push_back(float((c.x - 0.5) * sx));
+    coords.push_back(float((c.y - 0.5) * sy));
     labels.push_back(float(c.label));
   }
   // No box: the export expects one padding point (0, 0) with label -1.

@@ -64,11 +64,11 @@ Image Session::selection_coverage(int view) const {
   return rasterize(views_.at(size_t(view)).frame, s, &values).value;
 }
 
-RoundReport Session::click(int view, const ViewClick& c) {
+RoundReport Session::click(int view, const Click& c) {
   if (view < 0 || view >= int(views_.size())) throw Error("click: no view " + std::to_string(view));
   const Camera& cam = views_[size_t(view)].camera;
-  if (!(c.u >= 0 && c.v >= 0 && c.u < cam.width && c.v < cam.height))
-    throw Error("click (" + std::to_string(c.u) + ", " + std::to_string(c.v) + ") is outside view '" +
+  if (!(c.x >= 0 && c.y >= 0 && c.x < cam.width && c.y < cam.height))
+    throw Error("click (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ") is outside view '" +
                 views_[size_t(view)].name + "' (" + std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
   if (c.label != 0 && c.label != 1) throw Error("click label must be 1 (positive) or 0 (negative)");
   State next;  // run_round derives the views, votes and selection from the clicks
@@ -121,7 +121,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     parallel_for(V, workers, [&](int, size_t k) {
       if (workers > 1) models::limit_threads_of_this_thread(1);
       ViewState& vs = fresh[k];
-      const bool positive = std::any_of(vs.clicks.begin(), vs.clicks.end(), [](const ViewClick& c) { return c.label == 1; });
+      const bool positive = std::any_of(vs.clicks.begin(), vs.clicks.end(), [](const Click& c) { return c.label == 1; });
       if (!positive) {
         vs.status = ViewStatus::NoClicks;
         return;
@@ -131,7 +131,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       const ViewState& old = prev.views[k];
       bool same = old.clicks.size() == vs.clicks.size() && !old.low_res.empty();
       for (size_t i = 0; same && i < vs.clicks.size(); ++i)
-        same = old.clicks[i].u == vs.clicks[i].u && old.clicks[i].v == vs.clicks[i].v &&
+        same = old.clicks[i].x == vs.clicks[i].x && old.clicks[i].y == vs.clicks[i].y &&
                old.clicks[i].label == vs.clicks[i].label;
       if (same) {
         vs.mask = old.mask;
@@ -140,11 +140,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
         vs.low_res = old.low_res;
         return;
       }
-      std::vector<models::Click> clicks;
-      for (const ViewClick& c : vs.clicks) clicks.push_back({c.u - 0.5, c.v - 0.5, c.label});  // SAM: pixel indices
       const std::vector<float>* previous =
           options_.reuse_previous_mask && !old.low_res.empty() ? &old.low_res : nullptr;
-      models::SegmentResult r = sam_->decode(views_[k].embedding, clicks, previous);
+      models::SegmentResult r = sam_->decode(views_[k].embedding, vs.clicks, previous);
       ++segmented;
       vs.mask.resize(r.mask.data.size());
       vs.mask_pixels = 0;

@@ -27,14 +27,14 @@ struct SessionOptions {
 
 struct UserClick {
   int view = 0;
-  ViewClick click;
+  Click click;
 };
 
 enum class ViewStatus { Accepted, NoClicks, EmptyMask, NoOverlap, Skipped };
 const char* status_name(ViewStatus s);
 
 struct ViewState {
-  std::vector<ViewClick> clicks;       // the clicks SAM got in this view
+  std::vector<Click> clicks;       // the clicks SAM got in this view
   std::vector<std::string> not_sent;   // why other clicks did not reach this view
   std::vector<uint8_t> mask;           // SAM mask at the view's working resolution (0/1)
   int mask_pixels = 0;
@@ -60,7 +60,7 @@ class Session {
   int add_view(SegmentView view);
   // A click in view `view` at continuous pixel coordinates of that view's working
   // resolution; label 1 positive, 0 negative. Runs a full round.
-  RoundReport click(int view, const ViewClick& click);
+  RoundReport click(int view, const Click& click);
   // Removes the last click; false when there is none.
   bool undo();
 

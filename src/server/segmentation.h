@@ -13,8 +13,7 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "core/click.h"
 #include "core/scene.h"
 #include "models/sam.h"
 #include "segment/session.h"
@@ -28,13 +27,27 @@ struct SegmentSettings {
   bool inspection = true;
 };
 
-// A user click: in a training camera (camera_index >= 0) or a free camera; position in
-// [0, 1] x [0, 1] of the image (x right, y down); label 1 positive, 0 negative.
+// A user click: in a training camera (camera_index >= 0) or a free camera, at continuous
+// pixel coordinates of that camera's full-size image (core/click.h), as the page sends it.
 struct ClickRecord {
   int camera_index = -1;
   std::optional<Camera> free_camera;
-  double x = 0, y = 0;
-  int label = 1;
+  Click click;
+};
+
+// What the evidence strip shows of one segmentation view.
+struct ViewEvidence {
+  size_t index = 0;
+  std::string name;
+  int camera = -1;             // -1: a free camera
+  std::string status;          // accepted, dropped, no-clicks, empty-mask, skipped, idle
+  std::string status_text;
+  int positive = 0, negative = 0;
+  size_t not_sent = 0;
+  std::string not_sent_reason;
+  int mask_pixels = 0;
+  double sam_score = 0;
+  double overlap = 0;
 };
 
 class Segmentation {
@@ -54,7 +67,7 @@ class Segmentation {
   segment::RoundReport click(const ClickRecord& click, const Progress& progress);
   bool can_undo() const { return !log_.empty(); }
   bool can_redo() const { return !redo_.empty(); }
-  void undo();                              // throws HttpError(409) when nothing to undo
+  void undo();                              // throws AppError(kConflict) when nothing to undo
   void redo(const Progress& progress);      // re-runs the undone click
   // New settings: rebuilds the views and replays the clicks (embeddings cached).
   void reconfigure(const SegmentSettings& settings, const Progress& progress);
@@ -63,8 +76,8 @@ class Segmentation {
   const std::vector<bool>& selection() const;
   size_t selected_count() const;
   const std::vector<ClickRecord>& clicks() const { return log_; }
-  // Per view: name, camera, clicks, mask size, inspection status.
-  nlohmann::json views_json() const;
+  // Per view: name, camera, clicks, mask size, inspection verdict.
+  std::vector<ViewEvidence> evidence() const;
   // Evidence thumbnail of every view (JPEG, longest side `side`).
   std::vector<std::vector<uint8_t>> thumbnails(int side) const;
   size_t view_count() const;

@@ -131,7 +131,7 @@ try {
   await page.screenshot({ path: path.join(shots, '02-ready.png') });
 
   // Bad input is answered with a message, not a crash.
-  const bad = await fetch(`${url}api/click`, { method: 'POST', body: '{"view":0,"x":7,"y":0}' });
+  const bad = await fetch(`${url}api/click`, { method: 'POST', body: '{"view":0,"x":-7,"y":0}' });
   check(bad.status === 400 && (await bad.json()).error.includes('x'), 'an out-of-range click is a 400 with a message');
 
   const img = await page.$('#view-img');
