@@ -216,6 +216,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       int overlap = 0;
       for (size_t i = 0; i < vs.mask.size(); ++i) overlap += vs.mask[i] && coverage.data[i] > 0.5f;
       vs.overlap = double(overlap) / vs.mask_pixels;
+      vs.inspected = true;
       if (overlap == 0 || vs.overlap < options_.min_overlap) {
         vs.status = ViewStatus::NoOverlap;
         ++rep.dropped;

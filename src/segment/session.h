@@ -42,6 +42,7 @@ struct ViewState {
   std::vector<float> low_res;          // SAM low-res logits, for the next round
   ViewStatus status = ViewStatus::NoClicks;
   double overlap = 0;                  // IIM: share of the mask covered by the selection
+  bool inspected = false;              // overlap was measured (not for the clicked view, which votes first)
   ViewVotes positive;                  // P-votes of the mask (when accepted)
 };
 

@@ -198,7 +198,8 @@ json to_json(const AppStatus& s) {
                      {"not_sent_reason", v.not_sent_reason},
                      {"mask_pixels", v.mask_pixels},
                      {"sam_score", v.sam_score},
-                     {"overlap", v.overlap}});
+                     {"overlap", v.overlap},
+                     {"inspected", v.inspected}});
   j["segmentation"] = {{"state", g.state},
                        {"message", g.message},
                        {"stale", g.stale},

@@ -148,18 +148,21 @@ EditResult AppState::edit(const edit::EditOp& op) {
   }
   EditResult r = scene_.edit(op, op.kind == edit::EditKind::kCombine ? &other : nullptr);
   log_.note(r.label);
+  segmentation_.scene_changed();
   return r;
 }
 
 EditResult AppState::undo_edit() {
   EditResult r = scene_.undo();
   log_.note("undo: " + r.label);
+  segmentation_.scene_changed();
   return r;
 }
 
 EditResult AppState::redo_edit() {
   EditResult r = scene_.redo();
   log_.note("redo: " + r.label);
+  segmentation_.scene_changed();
   return r;
 }
 

@@ -39,7 +39,40 @@ segment::SessionOptions Segmentation::session_options() const {
   return o;
 }
 
+void Segmentation::keep_current() {
+  if (!session_) return;
+  kept_.push_back({std::move(snapshot_), fingerprint_, std::move(session_), std::move(log_), std::move(redo_),
+                   std::move(free_views_)});
+  if (kept_.size() > kKept) kept_.erase(kept_.begin());
+  log_.clear();
+  redo_.clear();
+  free_views_.clear();
+}
+
+std::vector<uint64_t> Segmentation::kept() const {
+  std::vector<uint64_t> out;
+  for (const Kept& k : kept_) out.push_back(k.fingerprint);
+  return out;
+}
+
+bool Segmentation::restore(uint64_t fingerprint) {
+  auto it = std::find_if(kept_.begin(), kept_.end(), [&](const Kept& k) { return k.fingerprint == fingerprint; });
+  if (it == kept_.end()) return false;
+  Kept k = std::move(*it);
+  kept_.erase(it);
+  if (fingerprint_ != fingerprint) keep_current();
+  snapshot_ = std::move(k.snapshot);
+  fingerprint_ = k.fingerprint;
+  session_ = std::move(k.session);
+  log_ = std::move(k.log);
+  redo_ = std::move(k.redo);
+  free_views_ = std::move(k.free_views);
+  return true;
+}
+
 void Segmentation::open(std::shared_ptr<const SceneBundle> snapshot, uint64_t fingerprint, const Progress& progress) {
+  if (session_ && fingerprint_ != fingerprint) keep_current();
+  if (restore(fingerprint)) return;
   session_.reset();
   snapshot_ = std::move(snapshot);
   fingerprint_ = fingerprint;
@@ -130,6 +163,7 @@ void Segmentation::reconfigure(const SegmentSettings& s, const Progress& progres
   // Validate the view spec before dropping anything.
   segment::sample_views(snapshot_->cameras, s.views_spec);
   settings_ = s;
+  kept_.clear();  // made under other settings
   redo_.clear();
   rebuild(progress);
 }
@@ -172,6 +206,7 @@ std::vector<ViewEvidence> Segmentation::evidence() const {
     e.mask_pixels = st.mask_pixels;
     e.sam_score = st.sam_score;
     e.overlap = st.overlap;
+    e.inspected = st.inspected;
     out.push_back(std::move(e));
   }
   return out;

@@ -48,6 +48,7 @@ struct ViewEvidence {
   int mask_pixels = 0;
   double sam_score = 0;
   double overlap = 0;
+  bool inspected = false;      // false: accepted without inspection (the clicked view, or inspection off)
 };
 
 class Segmentation {
@@ -58,8 +59,15 @@ class Segmentation {
                segment::ViewOptions view_options, SegmentSettings settings);
 
   // Builds the sampled views of `snapshot` (embeddings from the cache when present)
-  // and opens an empty session; the click log is cleared.
+  // and opens an empty session; the click log is cleared. The segmentation of the scene
+  // it replaces is kept (the last few), so undoing edits back to that scene brings its
+  // clicks back (restore); a kept one for `fingerprint` is reopened as it was.
   void open(std::shared_ptr<const SceneBundle> snapshot, uint64_t fingerprint, const Progress& progress);
+  // Fingerprints of the kept segmentations of earlier scenes.
+  std::vector<uint64_t> kept() const;
+  // Makes the kept segmentation of `fingerprint` current (the current one is kept);
+  // false when there is none.
+  bool restore(uint64_t fingerprint);
   bool is_open() const { return session_ != nullptr; }
   uint64_t fingerprint() const { return fingerprint_; }
 
@@ -87,6 +95,17 @@ class Segmentation {
   void rebuild(const Progress& progress);
   segment::SessionOptions session_options() const;
 
+  struct Kept {
+    std::shared_ptr<const SceneBundle> snapshot;
+    uint64_t fingerprint = 0;
+    std::unique_ptr<segment::Session> session;
+    std::vector<ClickRecord> log, redo;
+    std::vector<std::optional<Camera>> free_views;
+  };
+  static constexpr size_t kKept = 3;  // each holds its views' renders and embeddings
+  void keep_current();
+
+  std::vector<Kept> kept_;  // newest last
   std::shared_ptr<const models::SamModel> sam_;
   segment::SessionOptions base_session_;
   segment::ViewOptions view_options_;

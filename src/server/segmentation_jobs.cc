@@ -1,5 +1,6 @@
 #include "server/segmentation_jobs.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -96,12 +97,12 @@ void SegmentationJobs::ensure_current(const Progress& progress) {
   set_state("ready", kReady);
 }
 
-void SegmentationJobs::publish(bool apply_selection) {
-  if (!seg_) return;
-  if (apply_selection && seg_->is_open() &&
-      !scene_.select_from_segmentation(seg_->selection(), seg_->fingerprint(),
-                                       "click selection (" + std::to_string(seg_->selected_count()) + " Gaussians)"))
-    log_.note("the scene changed while segmenting; the click's selection was not applied", "warn");
+bool SegmentationJobs::publish(bool apply_selection) {
+  if (!seg_) return true;
+  const bool applied =
+      !apply_selection || !seg_->is_open() ||
+      scene_.select_from_segmentation(seg_->selection(), seg_->fingerprint(),
+                                      "click selection (" + std::to_string(seg_->selected_count()) + " Gaussians)");
   std::vector<std::vector<uint8_t>> thumbs = seg_->thumbnails(kThumbSide);
   std::vector<ViewEvidence> views = seg_->evidence();
   std::lock_guard<std::mutex> lock(status_mu_);
@@ -113,8 +114,10 @@ void SegmentationJobs::publish(bool apply_selection) {
   published_.can_undo = seg_->can_undo();
   published_.can_redo = seg_->can_redo();
   published_.settings = seg_->settings();
+  kept_ = seg_->kept();
   ++published_.thumb_version;
   log_.bump();
+  return applied;
 }
 
 void SegmentationJobs::require_available() const {
@@ -154,7 +157,9 @@ uint64_t SegmentationJobs::click(const ClickRecord& c) {
     ensure_current(progress);
     const auto t0 = std::chrono::steady_clock::now();
     segment::RoundReport r = seg_->click(c, progress);
-    publish(true);
+    // An edit landed while this click was segmented: its selection refers to the old
+    // scene. Say so (the page shows the job's error) rather than drop it silently.
+    if (!publish(true)) conflict("the scene was edited while this click was being segmented: click again");
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     char line[256];
     std::snprintf(line, sizeof line, "%s click: %zu Gaussians selected; %d views segmented, %d accepted, %d dropped (%.1f s)",
@@ -173,7 +178,7 @@ uint64_t SegmentationJobs::undo_click() {
   return submit("undo click", [this](const Progress&) {
     if (!seg_ || seg_->fingerprint() != scene_.fingerprint()) conflict(kEditedSince);
     seg_->undo();
-    publish(true);
+    if (!publish(true)) conflict(kEditedSince);
     log_.note("undid a click: " + std::to_string(seg_->selected_count()) + " Gaussians selected");
   });
 }
@@ -188,7 +193,7 @@ uint64_t SegmentationJobs::redo_click() {
   return submit("redo click", [this](const Progress& progress) {
     if (!seg_ || seg_->fingerprint() != scene_.fingerprint()) conflict(kEditedSince);
     seg_->redo(progress);
-    publish(true);
+    if (!publish(true)) conflict(kEditedSince);
     log_.note("redid a click: " + std::to_string(seg_->selected_count()) + " Gaussians selected");
   });
 }
@@ -221,6 +226,26 @@ uint64_t SegmentationJobs::set_settings(const SettingsRequest& request) {
                   s.views_spec.c_str(), seg_->view_count(), segment::mode_name(s.mode), s.inspection ? "on" : "off");
     log_.note(line);
   });
+}
+
+void SegmentationJobs::scene_changed() {
+  const uint64_t fp = scene_.fingerprint();
+  {
+    std::lock_guard<std::mutex> lock(status_mu_);
+    if (published_.state != "ready" || std::find(kept_.begin(), kept_.end(), fp) == kept_.end()) return;
+  }
+  try {
+    jobs_.submit("restore segmentation", [this](const JobRunner::Report&) {
+      std::lock_guard<std::mutex> seg_lock(seg_mu_);
+      const uint64_t now = scene_.fingerprint();
+      if (!seg_ || seg_->fingerprint() == now || !seg_->restore(now)) return;
+      publish(false);
+      log_.note("the scene is back to an earlier state: its " + std::to_string(seg_->clicks().size()) +
+                " click(s) are current again");
+    });
+  } catch (const AppError&) {
+    // Queue full or stopping: the next click re-segments instead.
+  }
 }
 
 SegmentationStatus SegmentationJobs::status(uint64_t edit_fingerprint) const {

@@ -70,6 +70,10 @@ class SegmentationJobs {
   uint64_t undo_click();
   uint64_t redo_click();
   uint64_t set_settings(const SettingsRequest& request);
+  // The edited scene changed (edit, undo, redo): when it is back to a scene an earlier
+  // segmentation ran on, a quick job makes that segmentation (its clicks, evidence and
+  // click undo) current again. Never throws; a full queue just skips it.
+  void scene_changed();
 
   SegmentationStatus status(uint64_t edit_fingerprint) const;
   // Evidence thumbnail of view `index` (JPEG); AppError(kNotFound) when absent.
@@ -80,7 +84,8 @@ class SegmentationJobs {
   std::shared_ptr<const SceneBundle> snapshot() const;
   void prepare_job(const JobRunner::Report& report);
   void ensure_current(const Progress& progress);       // seg_mu_ held
-  void publish(bool apply_selection);                   // seg_mu_ held
+  // Returns false when the selection should have been applied but the scene had changed.
+  bool publish(bool apply_selection);                   // seg_mu_ held
   void set_state(const std::string& state, const std::string& message);
   void require_available() const;
   uint64_t submit(const std::string& name, std::function<void(const Progress&)> work);
@@ -98,6 +103,7 @@ class SegmentationJobs {
   mutable std::mutex status_mu_;
   SegmentationStatus published_;
   uint64_t seg_fingerprint_ = 0;
+  std::vector<uint64_t> kept_;  // fingerprints Segmentation::restore can bring back
   std::vector<std::vector<uint8_t>> thumbs_;
 };
 

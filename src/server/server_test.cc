@@ -481,6 +481,8 @@ TEST(ServerApi, ClickSelectsTheObjectWithSam) {
   EXPECT_LT(selected, object_size * 3 / 2) << st.dump();
   EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 1);
   EXPECT_EQ(st["segmentation"]["views"][0]["status"], "accepted");
+  // The clicked view votes first: accepted without an (always 0 %) overlap figure.
+  EXPECT_FALSE(st["segmentation"]["views"][0]["inspected"].get<bool>());
   auto thumb = s.client->Get("/api/thumb?index=0");
   ASSERT_TRUE(thumb);
   EXPECT_EQ(thumb->status, 200);
@@ -503,6 +505,22 @@ TEST(ServerApi, ClickSelectsTheObjectWithSam) {
   // Undoing the removal makes it current again.
   s.post_json("/api/edit/undo", "");
   EXPECT_FALSE(s.get_json("/api/status")["segmentation"]["stale"].get<bool>());
+
+  // Remove again and click on the edited scene (a new click sequence on it); undoing every
+  // edit brings the first scene's segmentation back: not "scene edited", its click undoable.
+  s.post_json("/api/edit/redo", "");
+  s.post_json("/api/click", click.dump(), 202);
+  ASSERT_TRUE(s.app->jobs().wait_idle(120));
+  st = s.get_json("/api/status");
+  EXPECT_FALSE(st["segmentation"]["stale"].get<bool>());
+  EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 1);
+  while (s.get_json("/api/status")["edit"]["can_undo"].get<bool>()) s.post_json("/api/edit/undo", "");
+  ASSERT_TRUE(s.app->jobs().wait_idle(60));
+  st = s.get_json("/api/status");
+  EXPECT_EQ(st["edit"]["gaussians"].get<size_t>(), d.bundle.gaussians.size());
+  EXPECT_FALSE(st["segmentation"]["stale"].get<bool>()) << st["segmentation"].dump();
+  EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 1);
+  EXPECT_TRUE(st["segmentation"]["can_undo"].get<bool>());
   s.post_json("/api/settings", R"({"tau": 1.5})", 400);
   s.post_json("/api/settings", R"({"views": "nope"})", 400);
   s.post_json("/api/click", R"({"view": 0, "x": 0.5})", 400);
