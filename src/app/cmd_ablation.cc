@@ -148,9 +148,7 @@ int run_eval_ablation(const Args& args) {
     std::vector<double> per;
     for (const auto& [s, t] : tasks) {
       segment::PipelineTimings tm;
-      segment::PromptClick c;
-      c.x = t->x;
-      c.y = t->y;
+      const Click c = pixel_centre_click(t->x, t->y, 1);
       auto session = segment::segment_from_prompts(s->scene.bundle, t->camera, {c}, sam, so, setup.views, "all", &tm);
       double iou, acc;
       score_selection(s->scene, demo_object_mask(s->scene, t->object), session->selection(), iou, acc);
@@ -206,12 +204,12 @@ int run_ablation(const std::vector<std::string>& argv) {
       {"hybrid, IIM, 10% views", segment::PropagationMode::Hybrid, true, "10%"},
   };
   // The clicks: one per object, in the first camera that sees its centre.
-  std::vector<std::pair<int, segment::PromptClick>> clicks;
+  std::vector<std::pair<int, Click>> clicks;
   for (size_t o = 0; o < demo.objects.size(); ++o) {
     int cam = 0;
-    segment::PromptClick c;
-    if (!demo_click(demo, int(o), cam, c.x, c.y)) throw Error("ablation: no camera sees " + demo.objects[o].name);
-    clicks.push_back({cam, c});
+    double x = 0, y = 0;  // a pixel
+    if (!demo_click(demo, int(o), cam, x, y)) throw Error("ablation: no camera sees " + demo.objects[o].name);
+    clicks.push_back({cam, pixel_centre_click(x, y, 1)});
   }
   std::printf("synthetic scene: %zu Gaussians, %zu objects, %zu cameras at %dx%d; one click per object\n\n",
               demo.bundle.gaussians.size(), demo.objects.size(), demo.bundle.cameras.size(), opt.width, opt.height);

@@ -41,10 +41,8 @@ int run_sam(const std::vector<std::string>& argv) {
   for (const auto& p : args.all("point")) {
     std::vector<double> v = parse_numbers(p, 0, "--point x,y[,label]");
     if (v.size() != 2 && v.size() != 3) throw Error("--point " + p, "expected x,y or x,y,label");
-    models::Click c;
-    c.x = v[0];
-    c.y = v[1];
-    c.label = v.size() == 3 ? int(v[2]) : 1;
+    // --point i,j names pixel (i, j) (as SAM's tools do): the click is its centre.
+    models::Click c = pixel_centre_click(v[0], v[1], v.size() == 3 ? int(v[2]) : 1);
     if (c.label != 0 && c.label != 1) throw Error("--point " + p, "label must be 1 (positive) or 0 (negative)");
     clicks.push_back(c);
   }

@@ -19,15 +19,15 @@ namespace fs = std::filesystem;
 namespace isegman::app {
 namespace {
 
-std::vector<segment::PromptClick> parse_clicks(const Args& args) {
-  std::vector<segment::PromptClick> clicks;
+std::vector<Click> parse_clicks(const Args& args) {
+  std::vector<Click> clicks;
   for (const std::string& c : args.all("click")) {
     auto v = parse_numbers(c, 2, "--click");
-    clicks.push_back({v[0], v[1], 1});
+    clicks.push_back(pixel_centre_click(v[0], v[1], 1));  // --click i,j names pixel (i, j)
   }
   for (const std::string& c : args.all("neg")) {
     auto v = parse_numbers(c, 2, "--neg");
-    clicks.push_back({v[0], v[1], 0});
+    clicks.push_back(pixel_centre_click(v[0], v[1], 0));
   }
   if (clicks.empty()) throw Error("give at least one --click x,y");
   return clicks;
@@ -46,7 +46,7 @@ int run_segment(const std::vector<std::string>& argv) {
   const Camera* cam = find_camera(b.cameras, args.get("view"));
   if (!cam) throw Error(b.cameras_path, "no camera with id or name '" + args.get("view") + "'");
   const int camera_index = int(cam - b.cameras.data());
-  const std::vector<segment::PromptClick> clicks = parse_clicks(args);
+  const std::vector<Click> clicks = parse_clicks(args);
   SegmentSetup setup = parse_segment_setup(args);
   auto sam = load_sam(setup);
 
@@ -101,7 +101,7 @@ std::string usage() {
   return std::string(
              "usage: isegman segment <scene> --view ID|NAME --click x,y [--click x,y ...] [--neg x,y ...]\n"
              "                       --out SELECTION.isel [--ply SELECTED.ply] [--overlays DIR] [options]\n"
-             "  Clicks are pixel coordinates in that camera's image (x right, y down). Each click is a\n"
+             "  --click i,j names pixel (i, j) of that camera's image (x right, y down). Each click is a\n"
              "  round of the interactive method: propagated to every view, segmented by SAM, inspected\n"
              "  and voted into the 3D selection.\n") +
          kSegmentOptionsHelp;

@@ -18,7 +18,7 @@ struct EvalTaskSpec {
   std::string kind;  // the failure kind it reproduces
   int object = 0;    // label of the target in the scene
   int camera = 0;    // the clicked camera
-  double x = 0, y = 0;  // the click (pixel index, SAM convention)
+  double x = 0, y = 0;  // the clicked pixel (integer indices; its centre is x + 0.5, y + 0.5)
 };
 
 struct EvalScene {

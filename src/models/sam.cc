@@ -409,8 +409,10 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
     if (c.label < 0 || c.label > 3)
       throw Error("SAM: click label must be 1 (positive), 0 (negative), or 2 / 3 (box corners)");
     box_corners += c.label >= 2;
-    coords.push_back(float(c.x * sx));
-    coords.push_back(float(c.y * sy));
+    // SAM takes pixel indices (its prompt encoder adds 0.5 to reach the pixel centre);
+    // our clicks are continuous (core/click.h): the centre of pixel i is i + 0.5.
+    coords.push_back(float((c.x - 0.5) * sx));
+    coords.push_back(float((c.y - 0.5) * sy));
     labels.push_back(float(c.label));
   }
   if (box_corners != 0 && box_corners != 2) throw Error("SAM: a box needs both corners (labels 2 and 3)");

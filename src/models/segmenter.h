@@ -4,19 +4,17 @@
 
 #include <vector>
 
+#include "core/click.h"
 #include "core/image.h"
 #include "models/feature_map.h"
 
 namespace isegman::models {
 
-// A click in image pixel coordinates, SAM's convention: (x, y) names the clicked pixel, x to
-// the right, y down; integer values are pixel indices (SAM shifts to the pixel centre itself).
-// label 1 = positive (include), 0 = negative (exclude); 2 and 3 are a box's top-left and
-// bottom-right corners (SAM's box prompt, at most one box).
-struct Click {
-  double x = 0, y = 0;
-  int label = 1;
-};
+// The one click type (core/click.h): continuous pixel coordinates, pixel (i, j) covers
+// [i, i+1) x [j, j+1). SAM's point convention differs by half a pixel; sam.cc converts.
+// Labels: 1 positive, 0 negative; 2 and 3 are a box's top-left and bottom-right corners
+// (SAM's box prompt, at most one box).
+using Click = isegman::Click;
 
 struct SegmentResult {
   Image mask;                      // width x height of the image, 1 channel, values 0 or 1

@@ -10,6 +10,7 @@
 
 #include <string>
 
+#include "core/click.h"
 #include "segment/views.h"
 
 namespace isegman::segment {
@@ -17,11 +18,6 @@ namespace isegman::segment {
 enum class PropagationMode { Epipolar, Depth, Hybrid };
 PropagationMode parse_mode(const std::string& name);
 const char* mode_name(PropagationMode mode);
-
-struct ViewClick {
-  double u = 0, v = 0;  // continuous pixel coordinates in the view
-  int label = 1;        // 1 positive, 0 negative
-};
 
 struct PropagationOptions {
   PropagationMode mode = PropagationMode::Hybrid;
@@ -36,7 +32,7 @@ struct PropagationOptions {
 
 struct Propagated {
   bool sent = false;
-  ViewClick click;
+  Click click;
   float affinity = 0;   // feature similarity of the match (epipolar / hybrid)
   std::string reason;   // why it was not sent
 };
@@ -44,7 +40,7 @@ struct Propagated {
 // 3D point under a view's pixel at the rendered expected depth; false without surface.
 bool surface_point(const SegmentView& view, double u, double v, double min_alpha, Vec3& point);
 
-Propagated propagate(const SegmentView& from, const ViewClick& click, const SegmentView& to,
+Propagated propagate(const SegmentView& from, const Click& click, const SegmentView& to,
                      const PropagationOptions& options, double scene_extent);
 
 }  // namespace isegman::segment

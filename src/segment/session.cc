@@ -64,17 +64,17 @@ Image Session::selection_coverage(int view) const {
   return rasterize(views_.at(size_t(view)).frame, s, &values).value;
 }
 
-RoundReport Session::click(int view, const ViewClick& c) {
+RoundReport Session::click(int view, const Click& c) {
   if (view < 0 || view >= int(views_.size())) throw Error("click: no view " + std::to_string(view));
   const Camera& cam = views_[size_t(view)].camera;
-  if (!(c.u >= 0 && c.v >= 0 && c.u < cam.width && c.v < cam.height))
-    throw Error("click (" + std::to_string(c.u) + ", " + std::to_string(c.v) + ") is outside view '" +
+  if (!(c.x >= 0 && c.y >= 0 && c.x < cam.width && c.y < cam.height))
+    throw Error("click (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ") is outside view '" +
                 views_[size_t(view)].name + "' (" + std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
   if (c.label != 0 && c.label != 1) throw Error("click label must be 1 (positive) or 0 (negative)");
   // The same click again (a double click, a repeated request) is not new information.
   for (const UserClick& old : state_.clicks)
-    if (old.view == view && old.click.label == c.label && std::floor(old.click.u) == std::floor(c.u) &&
-        std::floor(old.click.v) == std::floor(c.v)) {
+    if (old.view == view && old.click.label == c.label && std::floor(old.click.x) == std::floor(c.x) &&
+        std::floor(old.click.y) == std::floor(c.y)) {
       RoundReport same;
       same.duplicate = true;
       same.selected = size_t(std::count(state_.selection.begin(), state_.selection.end(), true));
@@ -206,9 +206,10 @@ bool prompt_from_coverage(const Image& cov, std::vector<models::Click>& prompt) 
       }
     }
   const double mx = 0.05 * (x1 - x0 + 1) + 2, my = 0.05 * (y1 - y0 + 1) + 2;
-  prompt = {{double(bx), double(by), 1},
-            {std::max(0.0, x0 - mx), std::max(0.0, y0 - my), 2},
-            {std::min(w - 1.0, x1 + mx), std::min(h - 1.0, y1 + my), 3}};
+  // Continuous pixel coordinates (core/click.h): the centre of pixel i is i + 0.5.
+  prompt = {{bx + 0.5, by + 0.5, 1},
+            {std::max(0.0, x0 - mx) + 0.5, std::max(0.0, y0 - my) + 0.5, 2},
+            {std::min(w - 1.0, x1 + mx) + 0.5, std::min(h - 1.0, y1 + my) + 0.5, 3}};
   return true;
 }
 
@@ -266,30 +267,29 @@ RoundReport Session::run_round(State& next, const State& prev) {
     std::vector<const std::vector<float>*> previous;
     for (size_t k = 0; k < V; ++k) {
       ViewState& vs = fresh[k];
-      const bool positive = std::any_of(vs.clicks.begin(), vs.clicks.end(), [](const ViewClick& c) { return c.label == 1; });
+      const bool positive = std::any_of(vs.clicks.begin(), vs.clicks.end(), [](const Click& c) { return c.label == 1; });
       if (!positive) {
         vs.status = ViewStatus::NoClicks;
         continue;
       }
       vs.status = ViewStatus::Skipped;  // until inspection decides
       std::vector<models::Click> clicks, inverted;
-      for (const ViewClick& c : vs.clicks) {
-        const models::Click sc{c.u - 0.5, c.v - 0.5, c.label};  // SAM: pixel indices
-        if (c.label == 1 || !o.negative_regions) clicks.push_back(sc);
-        inverted.push_back({sc.x, sc.y, 1 - c.label});
+      for (const Click& sc : vs.clicks) {
+        if (sc.label == 1 || !o.negative_regions) clicks.push_back(sc);
+        inverted.push_back({sc.x, sc.y, 1 - sc.label});
       }
       const bool has_negative = o.negative_regions && inverted.size() > clicks.size();
       const ViewState& old = prev.views[k];
       // Reuse last round's answers for what did not change in this view.
       auto same_clicks = [&](bool positives_only) {
-        std::vector<const ViewClick*> a, b;
-        for (const ViewClick& c : old.clicks)
+        std::vector<const Click*> a, b;
+        for (const Click& c : old.clicks)
           if (!positives_only || c.label == 1) a.push_back(&c);
-        for (const ViewClick& c : vs.clicks)
+        for (const Click& c : vs.clicks)
           if (!positives_only || c.label == 1) b.push_back(&c);
         if (a.size() != b.size()) return false;
         for (size_t i = 0; i < a.size(); ++i)
-          if (a[i]->u != b[i]->u || a[i]->v != b[i]->v || a[i]->label != b[i]->label) return false;
+          if (a[i]->x != b[i]->x || a[i]->y != b[i]->y || a[i]->label != b[i]->label) return false;
         return true;
       };
       const bool fresh_old = old.sam && !old.from_selection;
@@ -341,9 +341,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
     vs.neutral = ViewVotes{};
     if (o.depth_layers) {
       std::vector<double> seeds;
-      for (const ViewClick& c : vs.clicks) {
+      for (const Click& c : vs.clicks) {
         if (c.label != 1) continue;
-        const int x = std::clamp(int(c.u), 0, view.camera.width - 1), y = std::clamp(int(c.v), 0, view.camera.height - 1);
+        const int x = std::clamp(int(c.x), 0, view.camera.width - 1), y = std::clamp(int(c.y), 0, view.camera.height - 1);
         if (view.alpha.at(x, y) > 0.5f && view.depth.at(x, y) > 0) seeds.push_back(view.depth.at(x, y));
       }
       GateReport g = gate_by_depth(scene_, view.camera, vs.positive, vs.neutral, seeds, selection, o.layer_options);
@@ -394,6 +394,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       vs.overlap = a.mask_on_selection();
       vs.selection_inside = a.selection_inside();
       vs.iou = a.iou();
+      vs.inspected = true;
       const bool ok = o.agreement_inspection
                           ? a.coverage >= o.min_coverage_pixels && vs.selection_inside >= o.min_selection_inside &&
                                 vs.overlap >= o.min_mask_on_selection
@@ -442,7 +443,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
       vs.overlap = a.mask_on_selection();
       vs.selection_inside = a.selection_inside();
       vs.iou = a.iou();
-      if (vs.mask_pixels == 0 || vs.iou < o.min_prompt_iou) {
+      vs.inspected = true;
+      const bool agrees = vs.iou >= o.min_prompt_iou ||
+                          (vs.selection_inside >= o.min_prompt_inside && vs.overlap >= o.min_prompt_on_selection);
+      if (vs.mask_pixels == 0 || !agrees) {
         vs.status = ViewStatus::NoOverlap;
         continue;
       }

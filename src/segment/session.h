@@ -40,7 +40,9 @@ struct SessionOptions {
   // Views no click reached (point out of frame or hidden) are prompted from the selection
   // rendered in them (a box and an interior point, as SA3D does), for this many rounds.
   int selection_prompt_rounds = 2;
-  double min_prompt_iou = 0.5;         // agreement a prompted mask needs to vote
+  // A prompted mask has no click of its own, so it must agree more: hold this share of the
+  // rendered selection and be covered this much by it (or reach min_prompt_iou).
+  double min_prompt_inside = 0.7, min_prompt_on_selection = 0.3, min_prompt_iou = 0.5;
   // Negative clicks cut what SAM segments at them from the mask, instead of being given
   // to SAM as negative points (which reshapes the whole mask unpredictably).
   bool negative_regions = true;
@@ -48,14 +50,14 @@ struct SessionOptions {
 
 struct UserClick {
   int view = 0;
-  ViewClick click;
+  Click click;
 };
 
 enum class ViewStatus { Accepted, NoClicks, EmptyMask, NoOverlap, Skipped };
 const char* status_name(ViewStatus s);
 
 struct ViewState {
-  std::vector<ViewClick> clicks;       // the clicks SAM got in this view
+  std::vector<Click> clicks;       // the clicks SAM got in this view
   std::vector<std::string> not_sent;   // why other clicks did not reach this view
   std::vector<uint8_t> mask;           // SAM mask at the view's working resolution (0/1)
   int mask_pixels = 0;
@@ -69,6 +71,7 @@ struct ViewState {
   int candidate = 0;                   // which of SAM's candidates was used
   int depth_layers = 0;                // depth layers the mask's content splits into
   double gated_share = 0;              // share of the mask's weight outside the target's layer
+  bool inspected = false;              // overlap was measured (not for the clicked view, which votes first)
   ViewVotes positive;                  // P-votes of the mask (when accepted)
   ViewVotes neutral;                   // depth-gated weights that count neither way
   std::shared_ptr<const models::SegmentResult> sam;  // SAM's answer (every candidate), shared with history
@@ -91,7 +94,7 @@ class Session {
   int add_view(SegmentView view);
   // A click in view `view` at continuous pixel coordinates of that view's working
   // resolution; label 1 positive, 0 negative. Runs a full round.
-  RoundReport click(int view, const ViewClick& click);
+  RoundReport click(int view, const Click& click);
   // Removes the last click; false when there is none.
   bool undo();
 

@@ -5,6 +5,8 @@
 #include <new>
 
 #include "core/error.h"
+#include "server/api_json.h"
+#include "server/app_error.h"
 #include "server/app_state.h"
 #include "server/http_error.h"
 #include "server/validation.h"
@@ -26,6 +28,18 @@ void send_error(httplib::Response& res, int status, const std::string& message) 
   send_json(res, {{"error", message}, {"status", status}}, status);
 }
 
+// The status code of an app error: the one place that knows both.
+int status_for(ErrorKind kind) {
+  switch (kind) {
+    case ErrorKind::kInvalid: return 400;
+    case ErrorKind::kNotFound: return 404;
+    case ErrorKind::kConflict: return 409;
+    case ErrorKind::kUnavailable: return 409;
+    case ErrorKind::kBusy: return 503;
+  }
+  return 500;
+}
+
 // Runs a handler, turning every exception into an error response: the server never
 // dies on a request.
 template <typename Fn>
@@ -35,6 +49,8 @@ httplib::Server::Handler guarded(Fn fn) {
       fn(req, res);
     } catch (const HttpError& e) {
       send_error(res, e.status(), e.what());
+    } catch (const AppError& e) {
+      send_error(res, status_for(e.kind()), e.what());
     } catch (const Error& e) {
       send_error(res, 400, e.what());
     } catch (const json::exception& e) {
@@ -96,44 +112,6 @@ RenderRequest parse_render(const httplib::Request& req) {
   return r;
 }
 
-ClickRecord parse_click(const json& body) {
-  ClickRecord c;
-  const bool has_view = body.contains("view") && !body["view"].is_null();
-  const bool has_camera = body.contains("camera") && !body["camera"].is_null();
-  if (has_view == has_camera) bad_request("give either 'view' (a camera index) or 'camera' (a free camera)");
-  if (has_view) {
-    c.camera_index = json_integer(body, "view", 0, 1 << 20);
-  } else {
-    c.free_camera = make_free_camera(free_camera_from_json(body["camera"]));
-  }
-  c.x = json_number(body, "x", 0, 1);
-  c.y = json_number(body, "y", 0, 1);
-  c.label = json_integer(body, "label", 0, 1, 1);
-  return c;
-}
-
-SegmentSettings parse_settings(const json& body, const SegmentSettings& current) {
-  SegmentSettings s = current;
-  s.tau = json_number(body, "tau", 0, 0.999, current.tau);
-  s.views_spec = json_string(body, "views", 256, current.views_spec);
-  if (s.views_spec.empty()) bad_request("views: empty");
-  const std::string mode = json_string(body, "mode", 16, std::string(segment::mode_name(current.mode)));
-  if (mode != "hybrid" && mode != "epipolar" && mode != "depth") bad_request("mode: expected hybrid, epipolar or depth");
-  s.mode = segment::parse_mode(mode);
-  s.inspection = json_bool(body, "inspection", current.inspection);
-  return s;
-}
-
-SegmentSettings current_settings(const AppState& app) {
-  const json st = app.status()["segmentation"]["settings"];
-  SegmentSettings s;
-  s.tau = st["tau"].get<double>();
-  s.views_spec = st["views"].get<std::string>();
-  s.mode = segment::parse_mode(st["mode"].get<std::string>());
-  s.inspection = st["inspection"].get<bool>();
-  return s;
-}
-
 void serve_asset(const std::string& path, httplib::Response& res) {
   const WebAsset* a = find_web_asset(path);
   if (!a) throw HttpError(404, "no such page: " + path.substr(0, 100));
@@ -151,10 +129,10 @@ void register_routes(httplib::Server& server, AppState& app) {
   }
 
   server.Get("/api/scene", guarded([&app](const httplib::Request&, httplib::Response& res) {
-    send_json(res, app.scene_info());
+    send_json(res, to_json(app.scene_info()));
   }));
   server.Get("/api/status", guarded([&app](const httplib::Request&, httplib::Response& res) {
-    send_json(res, app.status());
+    send_json(res, to_json(app.status()));
   }));
   server.Get("/api/render", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const RenderRequest r = parse_render(req);
@@ -170,7 +148,7 @@ void register_routes(httplib::Server& server, AppState& app) {
     res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), "image/jpeg");
   }));
   server.Get("/api/selection/bounds", guarded([&app](const httplib::Request&, httplib::Response& res) {
-    send_json(res, app.selection_bounds());
+    send_json(res, to_json(app.selection_bounds()));
   }));
   server.Get("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     check_params(req, {"format"});
@@ -184,12 +162,11 @@ void register_routes(httplib::Server& server, AppState& app) {
   server.Get(R"(/api/jobs/(\d{1,18}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const JobStatus s = app.jobs().find(std::stoull(req.matches[1].str()));
     if (s.state.empty()) throw HttpError(404, "no job " + req.matches[1].str());
-    send_json(res, {{"id", s.id}, {"name", s.name}, {"state", s.state}, {"done", s.done}, {"total", s.total},
-                    {"message", s.message}, {"error", s.error}, {"seconds", s.seconds}});
+    send_json(res, to_json(s));
   }));
 
   server.Post("/api/click", guarded([&app](const httplib::Request& req, httplib::Response& res) {
-    const uint64_t id = app.click(parse_click(parse_body(req.body)));
+    const uint64_t id = app.click(click_from_json(parse_body(req.body)));
     send_json(res, {{"job", id}}, 202);
   }));
   server.Post("/api/click/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
@@ -199,26 +176,25 @@ void register_routes(httplib::Server& server, AppState& app) {
     send_json(res, {{"job", app.redo_click()}}, 202);
   }));
   server.Post("/api/settings", guarded([&app](const httplib::Request& req, httplib::Response& res) {
-    const json body = parse_body(req.body);
-    send_json(res, {{"job", app.set_settings(parse_settings(body, current_settings(app)))}}, 202);
+    send_json(res, {{"job", app.set_settings(settings_from_json(parse_body(req.body)))}}, 202);
   }));
   server.Post(R"(/api/select/([a-z]{1,16}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const json body = req.body.empty() ? json::object() : parse_body(req.body);
-    send_json(res, app.select(req.matches[1].str(), body));
+    send_json(res, to_json(app.select(select_from_json(req.matches[1].str(), body))));
   }));
   server.Post("/api/edit/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
-    send_json(res, app.undo_edit());
+    send_json(res, to_json(app.undo_edit()));
   }));
   server.Post("/api/edit/redo", guarded([&app](const httplib::Request&, httplib::Response& res) {
-    send_json(res, app.redo_edit());
+    send_json(res, to_json(app.redo_edit()));
   }));
   server.Post(R"(/api/edit/([a-z]{1,16}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const json body = req.body.empty() ? json::object() : parse_body(req.body);
-    send_json(res, app.edit(req.matches[1].str(), body));
+    send_json(res, to_json(app.edit(edit_from_json(req.matches[1].str(), body))));
   }));
   server.Post("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const json body = parse_body(req.body);
-    send_json(res, app.export_to(json_string(body, "path", 200)));
+    send_json(res, to_json(app.export_to(json_string(body, "path", 200))));
   }));
 
   server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
