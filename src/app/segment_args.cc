@@ -46,8 +46,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.min_total_weight = args.get_double("min-weight", 0.05);
   if (!(s.session.min_total_weight >= 0)) throw Error("--min-weight must be >= 0");
   s.session.inspection = !args.has("no-inspection");
-  s.session.threads = args.get_int("threads", 0);
-  if (s.session.threads < 0 || s.session.threads > 256) throw Error("--threads must be between 0 and 256");
+  s.session.threads = threads_arg(args);
   s.views.threads = s.session.threads;
   s.views.use_photos = args.has("photos");
   s.views.max_side = args.get_int("max-side", 1024);
