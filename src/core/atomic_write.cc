@@ -99,14 +99,20 @@ void write_file_atomic(const std::string& path, const void* bytes, size_t size) 
   if (path.back() == '/') throw Error(path, "names a folder, not a file");
   install_handlers_once();
   std::string tmp;
-  int fd = -1;
+  int fd = -1, slot = -1;
   for (int attempt = 0; attempt < 16 && fd < 0; ++attempt) {
     tmp = temporary_name(path);
+    // Tracked before it exists, so a signal arriving right after the open still removes it.
+    slot = track(tmp);
     fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-    if (fd < 0 && errno != EEXIST) break;
+    if (fd >= 0) break;
+    const int err = errno;
+    untrack(slot);  // not ours (EEXIST) or not created: never remove it
+    slot = -1;
+    errno = err;
+    if (err != EEXIST) break;
   }
   if (fd < 0) throw Error(path, std::string("cannot create output: ") + std::strerror(errno));
-  const int slot = track(tmp);
   ++g_in_flight;
   auto fail = [&](const std::string& what, int err) {
     if (fd >= 0) ::close(fd);
