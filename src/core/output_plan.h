@@ -5,7 +5,10 @@
 // are created only after every check passed, then tested for writability.
 #pragma once
 
+#include <map>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace isegman {
@@ -19,7 +22,6 @@ class OutputPlan {
   void output(const std::string& path, const std::string& what);
   // Creates the outputs' folders and checks they are writable; throws Error naming the folder.
   void prepare() const;
-  size_t outputs() const { return outputs_.size(); }
 
  private:
   struct Entry {
@@ -29,8 +31,15 @@ class OutputPlan {
     bool exists = false;
     unsigned long long dev = 0, ino = 0;
   };
+  struct Index {
+    std::map<std::string, Entry> by_path;  // resolved and target paths
+    std::map<std::pair<unsigned long long, unsigned long long>, Entry> by_inode;
+  };
   static Entry resolve(const std::string& path, const std::string& what, bool is_output);
-  std::vector<Entry> inputs_, outputs_;
+  static const Entry* find(const Index& index, const Entry& e);
+  static void add(Index& index, const Entry& e);
+  Index inputs_, outputs_;
+  std::set<std::string> dirs_;  // folders of the outputs, created by prepare()
 };
 
 // A camera name as a file name in an output folder: path separators become '_' (COLMAP
