@@ -2,6 +2,7 @@
 // toolbox on the command line (see docs/edit.md). Operations chain left to right on one
 // edit session; each prints what it changed.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -12,6 +13,7 @@
 #include "app/args.h"
 #include "app/command.h"
 #include "core/error.h"
+#include "core/output_plan.h"
 #include "core/selection.h"
 #include "edit/checks.h"
 #include "edit/colorize.h"
@@ -137,9 +139,21 @@ Loaded load_any(const std::string& path) {
   return l;
 }
 
+// A scene argument's files: the path itself and, for a trainer folder, its PLY and cameras.
+void plan_scene_inputs(OutputPlan& plan, const std::string& path, const std::string& what) {
+  plan.input(path, what);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    plan.input(find_scene_ply(path), what + " PLY");
+    plan.input((std::filesystem::path(path) / "cameras.json").string(), what + " cameras");
+  }
+}
+
 Vec3 vec_arg(const Args& a, const std::string& flag, const Vec3& fallback) {
   if (!a.has(flag)) return fallback;
   std::vector<double> v = parse_numbers(a.get(flag), 3, "--" + flag);
+  for (double c : v)
+    if (std::fabs(c) > 1e7) throw Error("--" + flag + ": each component must be within [-1e7, 1e7], got '" + a.get(flag) + "'");
   return {v[0], v[1], v[2]};
 }
 
@@ -149,6 +163,7 @@ Similarity similarity_from(const Args& a) {
   const Vec3 r = vec_arg(a, "rotate-deg", {0, 0, 0});
   t.rotation = rotation_from_euler_deg(r.x, r.y, r.z);
   t.scale = a.get_double("scale", 1.0);
+  if (!(t.scale >= 1e-4 && t.scale <= 1e4)) throw Error("--scale " + a.get("scale") + " is outside [1e-4, 1e4]");
   if (a.has("pivot")) t.pivot = vec_arg(a, "pivot", {});
   return t;
 }
@@ -209,6 +224,7 @@ EditOp edit_op_from(const std::string& word, const Args& a) {
   } else if (e.kind == EditKind::kScale) {
     if (!a.has("factor")) throw Error("scale: --factor E is required");
     e.factor = a.get_double("factor", 1.0);
+    if (!(e.factor >= 1e-4 && e.factor <= 1e4)) throw Error("scale: --factor " + a.get("factor") + " is outside [1e-4, 1e4]");
   } else if (e.kind == EditKind::kCopy || e.kind == EditKind::kTransform || e.kind == EditKind::kCombine) {
     e.transform = similarity_from(a);
   }
@@ -273,9 +289,22 @@ int run_edit(const std::vector<std::string>& argv) {
   if (segs.size() < 2) throw Error("edit: no operation given (remove, extract, colorize, scale, copy, transform, combine, select)");
   const std::string scene_path = head.positional(0, "<scene>: a scene directory, PLY or .splat file");
   if (head.positionals().size() > 1) throw Error("edit: unexpected argument '" + head.positionals()[1] + "'");
+  // Every file read (scene, selections, combine targets) against every file written,
+  // before any work: no output may replace an input or the other output.
+  OutputPlan plan;
+  plan_scene_inputs(plan, scene_path, "scene");
+  for (size_t s = 0; s < segs.size(); ++s) {
+    const Args a(segs[s].args, op_value_flags(segs[s].op), op_switch_flags(segs[s].op));
+    for (const std::string& f : a.all("selection")) plan.input(f, "selection file");
+    for (const std::string& f : a.all("into")) plan_scene_inputs(plan, f, "combine target");
+    for (const std::string& f : a.all("from")) plan_scene_inputs(plan, f, "combine source");
+  }
+  plan.output(out, "edited scene (--out)");
+  if (g.has("save-selection")) plan.output(g.get("save-selection"), "selection (--save-selection)");
+  plan.prepare();
   Loaded in = load_any(scene_path);
   std::vector<std::string> inputs{in.file, scene_path};
-  refuse_overwriting_inputs(out, inputs);  // before any work; checked again at the end
+  refuse_overwriting_inputs(out, inputs);  // checked again at the end
   std::printf("scene %s: %zu Gaussians, SH degree %d\n", in.file.c_str(), in.scene.size(), in.scene.sh_degree);
   EditSession session(std::move(in.scene), limits);
   bool given = false;

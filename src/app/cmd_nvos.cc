@@ -8,6 +8,7 @@
 #include "app/args.h"
 #include "app/command.h"
 #include "core/error.h"
+#include "core/output_plan.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
@@ -48,14 +49,21 @@ int run_nvos_import(const std::vector<std::string>& argv) {
     neg = scale_to_camera(segment::clicks_from_scribble(ni, n, 0), ni);
   }
   const fs::path out = args.get("out");
-  fs::create_directories(out / "masks");
+  const std::string mask_file = (out / "masks" / (camera_file_stem(mask_view) + ".png")).string();
+  OutputPlan plan;
+  plan.input(b.ply_path, "scene");
+  plan.input(b.cameras_path, "camera file");
+  for (const char* f : {"pos", "neg", "mask"}) plan.input(args.get(f), std::string("--") + f + " image");
+  plan.output((out / "prompts.json").string(), "prompts");
+  plan.output(mask_file, "ground-truth mask");
+  plan.prepare();
   nlohmann::json p = {{"view", view}, {"positive", nlohmann::json::array()}, {"negative", nlohmann::json::array()}};
   // prompts.json names pixels: the pixel each click lies in.
   for (auto& c : clicks) p["positive"].push_back({std::floor(c.x), std::floor(c.y)});
   for (auto& c : neg) p["negative"].push_back({std::floor(c.x), std::floor(c.y)});
   write_file_atomic((out / "prompts.json").string(), p.dump(1) + "\n");
   Image mask = read_image(args.get("mask"), 1);
-  write_png((out / "masks" / (mask_view + ".png")).string(), mask);
+  write_png(mask_file, mask);
   std::error_code ec;
   fs::remove(out / "scene", ec);
   fs::create_directory_symlink(scene, out / "scene", ec);

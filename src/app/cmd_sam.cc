@@ -6,6 +6,7 @@
 #include "app/args.h"
 #include "app/command.h"
 #include "core/error.h"
+#include "core/output_plan.h"
 #include "io/image_io.h"
 #include "models/sam.h"
 
@@ -49,9 +50,17 @@ int run_sam(const std::vector<std::string>& argv) {
   if (clicks.empty()) throw Error("isegman sam", "give at least one --point x,y[,label]");
   std::string out = args.get("out");
   if (out.empty()) throw Error("isegman sam", "--out mask.png is required");
+  OutputPlan plan;
+  plan.input(image_path, "image");
+  plan.input(encoder, "SAM encoder");
+  plan.input(decoder, "SAM decoder");
+  plan.output(out, "mask (--out)");
+  if (args.has("save-logits")) plan.output(args.get("save-logits"), "logits (--save-logits)");
+  if (args.has("overlay")) plan.output(args.get("overlay"), "overlay (--overlay)");
+  plan.prepare();
 
   double t0 = now_ms();
-  auto model = std::make_shared<models::SamModel>(encoder, decoder, args.get_int("threads", 0));
+  auto model = std::make_shared<models::SamModel>(encoder, decoder, threads_arg(args));
   double t_load = now_ms() - t0;
   Image img = read_image(image_path, 3);
   for (const auto& c : clicks)

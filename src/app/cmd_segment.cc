@@ -7,6 +7,7 @@
 #include "app/scene_args.h"
 #include "app/segment_args.h"
 #include "core/error.h"
+#include "core/output_plan.h"
 #include "core/selection.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
@@ -41,8 +42,18 @@ int run_segment(const std::vector<std::string>& argv) {
   if (!args.has("view")) throw Error("missing --view ID|NAME (the camera the clicks are in)");
   SceneBundle b = load_scene_from_args(args);
   const std::string out = args.get("out");
-  refuse_overwriting_inputs(out, {b.ply_path, b.cameras_path});
-  if (args.has("ply")) refuse_overwriting_inputs(args.get("ply"), {b.ply_path, b.cameras_path});
+  // Every input and output, checked (and the folders created) before minutes of work.
+  OutputPlan plan;
+  plan.input(b.ply_path, "scene");
+  plan.input(b.cameras_path, "camera file");
+  for (const Camera& c : b.cameras) plan.input(c.image_path, "photo of camera '" + c.name + "'");
+  plan.output(out, "selection (--out)");
+  if (args.has("ply")) plan.output(args.get("ply"), "selected Gaussians (--ply)");
+  if (args.has("overlays"))
+    for (const Camera& c : b.cameras)
+      plan.output((fs::path(args.get("overlays")) / (camera_file_stem(c.name) + ".png")).string(),
+                  "overlay of camera '" + c.name + "'");
+  plan.prepare();
   const Camera* cam = find_camera(b.cameras, args.get("view"));
   if (!cam) throw Error(b.cameras_path, "no camera with id or name '" + args.get("view") + "'");
   const int camera_index = int(cam - b.cameras.data());
@@ -84,10 +95,9 @@ int run_segment(const std::vector<std::string>& argv) {
   }
   if (args.has("overlays")) {
     const fs::path dir = args.get("overlays");
-    fs::create_directories(dir);
     for (size_t k = 0; k < session->views().size(); ++k) {
       const auto& v = session->views()[k];
-      write_png((dir / (v.name + ".png")).string(),
+      write_png((dir / (camera_file_stem(v.name) + ".png")).string(),
                 segment::make_overlay(v.rgb, session->view_states()[k], session->selection_coverage(int(k))));
     }
     std::printf("wrote overlays to %s (blue: SAM mask, orange: 3D selection, dots: clicks, border: "

@@ -66,8 +66,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.selection_prompt_rounds = paper ? 0 : args.get_int("selection-prompts", 2);
   if (s.session.selection_prompt_rounds < 0 || s.session.selection_prompt_rounds > 10)
     throw Error("--selection-prompts must be between 0 and 10");
-  s.session.threads = args.get_int("threads", 0);
-  if (s.session.threads < 0 || s.session.threads > 256) throw Error("--threads must be between 0 and 256");
+  s.session.threads = threads_arg(args);
   s.views.threads = s.session.threads;
   s.views.use_photos = args.has("photos");
   s.views.max_side = args.get_int("max-side", 1024);

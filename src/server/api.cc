@@ -2,7 +2,10 @@
 
 #include <httplib.h>
 
+#include <memory>
 #include <new>
+#include <regex>
+#include <vector>
 
 #include "core/error.h"
 #include "server/api_json.h"
@@ -112,6 +115,30 @@ RenderRequest parse_render(const httplib::Request& req) {
   return r;
 }
 
+// The route table, kept for answering a known path with the wrong method: 405 + Allow.
+struct Routes {
+  httplib::Server& server;
+  std::vector<std::pair<std::string, std::regex>> list;  // method, pattern
+
+  void get(const std::string& pattern, httplib::Server::Handler h) {
+    list.emplace_back("GET", std::regex(pattern));
+    server.Get(pattern, std::move(h));
+  }
+  void post(const std::string& pattern, httplib::Server::Handler h) {
+    list.emplace_back("POST", std::regex(pattern));
+    server.Post(pattern, std::move(h));
+  }
+  // "GET, HEAD" / "POST" for a path some route matches; "" for none.
+  std::string allowed(const std::string& path) const {
+    bool get = false, post = false;
+    for (const auto& [method, re] : list)
+      if (std::regex_match(path, re)) (method == "GET" ? get : post) = true;
+    std::string a = get ? "GET, HEAD" : "";
+    if (post) a += std::string(a.empty() ? "" : ", ") + "POST";
+    return a;
+  }
+};
+
 void serve_asset(const std::string& path, httplib::Response& res) {
   const WebAsset* a = find_web_asset(path);
   if (!a) throw HttpError(404, "no such page: " + path.substr(0, 100));
@@ -122,35 +149,36 @@ void serve_asset(const std::string& path, httplib::Response& res) {
 }  // namespace
 
 void register_routes(httplib::Server& server, AppState& app) {
-  server.Get("/", guarded([](const httplib::Request&, httplib::Response& res) { serve_asset("/index.html", res); }));
+  auto routes = std::make_shared<Routes>(Routes{server, {}});
+  routes->get("/", guarded([](const httplib::Request&, httplib::Response& res) { serve_asset("/index.html", res); }));
   for (const WebAsset& a : web_assets()) {
     const std::string path = a.path;
-    server.Get(path, guarded([path](const httplib::Request&, httplib::Response& res) { serve_asset(path, res); }));
+    routes->get(path, guarded([path](const httplib::Request&, httplib::Response& res) { serve_asset(path, res); }));
   }
 
-  server.Get("/api/scene", guarded([&app](const httplib::Request&, httplib::Response& res) {
+  routes->get("/api/scene", guarded([&app](const httplib::Request&, httplib::Response& res) {
     send_json(res, to_json(app.scene_info()));
   }));
-  server.Get("/api/status", guarded([&app](const httplib::Request&, httplib::Response& res) {
+  routes->get("/api/status", guarded([&app](const httplib::Request&, httplib::Response& res) {
     send_json(res, to_json(app.status()));
   }));
-  server.Get("/api/render", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->get("/api/render", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const RenderRequest r = parse_render(req);
     const std::vector<uint8_t> bytes = app.render(r);
     res.set_header("Cache-Control", "no-store");
     res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), r.png ? "image/png" : "image/jpeg");
   }));
-  server.Get("/api/thumb", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->get("/api/thumb", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     check_params(req, {"index", "v"});
     if (!req.has_param("index")) bad_request("missing parameter 'index'");
     const std::vector<uint8_t> bytes = app.thumbnail(parse_integer(param(req, "index"), "index", 0, 1 << 20));
     res.set_header("Cache-Control", "no-store");
     res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), "image/jpeg");
   }));
-  server.Get("/api/selection/bounds", guarded([&app](const httplib::Request&, httplib::Response& res) {
+  routes->get("/api/selection/bounds", guarded([&app](const httplib::Request&, httplib::Response& res) {
     send_json(res, to_json(app.selection_bounds()));
   }));
-  server.Get("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->get("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     check_params(req, {"format"});
     const std::string f = req.has_param("format") ? param(req, "format") : "ply";
     if (f != "ply" && f != "splat") bad_request("format: expected ply or splat");
@@ -159,48 +187,62 @@ void register_routes(httplib::Server& server, AppState& app) {
     res.set_header("Cache-Control", "no-store");
     res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), "application/octet-stream");
   }));
-  server.Get(R"(/api/jobs/(\d{1,18}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->get(R"(/api/jobs/(\d{1,18}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const JobStatus s = app.jobs().find(std::stoull(req.matches[1].str()));
     if (s.state.empty()) throw HttpError(404, "no job " + req.matches[1].str());
     send_json(res, to_json(s));
   }));
 
-  server.Post("/api/click", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->post("/api/click", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const uint64_t id = app.click(click_from_json(parse_body(req.body)));
     send_json(res, {{"job", id}}, 202);
   }));
-  server.Post("/api/click/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+  routes->post("/api/click/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
     send_json(res, {{"job", app.undo_click()}}, 202);
   }));
-  server.Post("/api/click/redo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+  routes->post("/api/click/redo", guarded([&app](const httplib::Request&, httplib::Response& res) {
     send_json(res, {{"job", app.redo_click()}}, 202);
   }));
-  server.Post("/api/settings", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->post("/api/settings", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     send_json(res, {{"job", app.set_settings(settings_from_json(parse_body(req.body)))}}, 202);
   }));
-  server.Post(R"(/api/select/([a-z]{1,16}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->post(R"(/api/select/([a-z]{1,16}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const json body = req.body.empty() ? json::object() : parse_body(req.body);
     send_json(res, to_json(app.select(select_from_json(req.matches[1].str(), body))));
   }));
-  server.Post("/api/edit/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+  routes->post("/api/edit/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
     send_json(res, to_json(app.undo_edit()));
   }));
-  server.Post("/api/edit/redo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+  routes->post("/api/edit/redo", guarded([&app](const httplib::Request&, httplib::Response& res) {
     send_json(res, to_json(app.redo_edit()));
   }));
-  server.Post(R"(/api/edit/([a-z]{1,16}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->post(R"(/api/edit/([a-z]{1,16}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const json body = req.body.empty() ? json::object() : parse_body(req.body);
     send_json(res, to_json(app.edit(edit_from_json(req.matches[1].str(), body))));
   }));
-  server.Post("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->post("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const json body = parse_body(req.body);
+    json_only_keys(body, {"path"});
     send_json(res, to_json(app.export_to(json_string(body, "path", 200))));
   }));
 
-  server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
+  server.set_error_handler([routes](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;
-    const std::string what = res.status == 404 ? "no such endpoint: " + req.method + " " + req.path.substr(0, 100)
-                                               : "request failed";
+    if (res.status == 404) {
+      const std::string allow = routes->allowed(req.path);
+      if (!allow.empty()) {
+        res.set_header("Allow", allow);
+        send_error(res, 405, req.method.substr(0, 16) + " is not allowed on " + req.path.substr(0, 100) +
+                                 " (allowed: " + allow + ")");
+        return;
+      }
+      send_error(res, 404, "no such endpoint: " + req.method.substr(0, 16) + " " + req.path.substr(0, 100));
+      return;
+    }
+    std::string what = "request failed";
+    if (res.status == 400) what = "malformed request (request line, headers or body could not be read)";
+    else if (res.status == 413) what = "request body too large";
+    else if (res.status == 414) what = "request URI too long";
     send_error(res, res.status, what);
   });
 }

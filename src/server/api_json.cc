@@ -39,6 +39,7 @@ FreeCameraSpec free_camera_from_json(const json& j) {
 }
 
 ClickRecord click_from_json(const json& body) {
+  json_only_keys(body, {"view", "camera", "x", "y", "label"});
   ClickRecord c;
   const bool has_view = body.contains("view") && !body["view"].is_null();
   const bool has_camera = body.contains("camera") && !body["camera"].is_null();
@@ -57,6 +58,7 @@ ClickRecord click_from_json(const json& body) {
 }
 
 SettingsRequest settings_from_json(const json& body) {
+  json_only_keys(body, {"tau", "views", "mode", "inspection"});
   SettingsRequest s;
   if (body.contains("tau")) s.tau = json_number(body, "tau", 0, 0.999);
   if (body.contains("views")) {

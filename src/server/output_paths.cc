@@ -32,19 +32,32 @@ std::string resolve_output_path(const std::string& root, const std::string& rela
     for (const auto& e : extensions) list += (list.empty() ? "" : ", ") + e;
     invalid("path: the extension must be one of " + list);
   }
+  // The root is the folder given at launch: create it; everything below it is checked
+  // first (the deepest folder that exists must resolve inside the root) and only then
+  // created, so a symlink leading out never gets a folder made at its far end.
   std::error_code ec;
   fs::create_directories(root, ec);
   const fs::path base = fs::weakly_canonical(fs::absolute(root), ec);
   if (ec) throw Error("output directory " + root, ec.message());
+  auto inside = [&base](const fs::path& p) {
+    auto b = base.begin(), r = p.begin();
+    for (; b != base.end(); ++b, ++r)
+      if (r == p.end() || *b != *r) return false;
+    return true;
+  };
   const fs::path target = base / rel;
+  fs::path existing = target.parent_path();
+  while (existing != base && !fs::exists(fs::symlink_status(existing, ec))) existing = existing.parent_path();
+  const fs::path real_existing = fs::canonical(existing, ec);
+  if (ec) invalid("path: " + existing.lexically_relative(base).string() + ": " + ec.message());
+  if (!inside(real_existing)) invalid("path: leads outside the output directory");
+  if (!fs::is_directory(real_existing)) invalid("path: " + existing.lexically_relative(base).string() + " is not a folder");
   fs::create_directories(target.parent_path(), ec);
   if (ec) invalid("path: cannot create " + target.parent_path().string() + ": " + ec.message());
   // Resolve symlinks in what exists now: the result must still lie under the root.
   const fs::path resolved = fs::weakly_canonical(target, ec);
   if (ec) invalid("path: " + ec.message());
-  auto b = base.begin(), r = resolved.begin();
-  for (; b != base.end(); ++b, ++r)
-    if (r == resolved.end() || *b != *r) invalid("path: leads outside the output directory");
+  if (!inside(resolved)) invalid("path: leads outside the output directory");
   if (fs::is_directory(resolved)) invalid("path: names a directory");
   return resolved.string();
 }
