@@ -19,7 +19,7 @@ struct Fixture {
   std::shared_ptr<const models::SamModel> sam;
   std::unique_ptr<segment::Session> session;
   int view = 0;
-  segment::ViewClick click;
+  Click click;
   double embed_ms_per_view = 0;
 };
 
@@ -52,10 +52,10 @@ Fixture* fixture(benchmark::State& state) {
   segment::ViewOptions vo;
   vo.cache_dir = (fs::temp_directory_path() / "isegman-bench-embeddings").string();
   fs::create_directories(vo.cache_dir);
-  f->session = segment::segment_from_prompts(f->demo.bundle, cam, {{x, y, 1}}, f->sam, segment::SessionOptions(), vo,
+  f->session = segment::segment_from_prompts(f->demo.bundle, cam, {pixel_centre_click(x, y, 1)}, f->sam, segment::SessionOptions(), vo,
                                              "all");
   f->view = segment::view_of_camera(*f->session, cam);
-  f->click = {x + 0.5, y + 0.5, 1};
+  f->click = pixel_centre_click(x, y, 1);
   f->session->undo();
   return f.get();
 }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace isegman::app {
 
@@ -65,6 +66,23 @@ int Args::get_int(const std::string& f, int fallback) const {
 const std::string& Args::positional(size_t i, const std::string& what) const {
   if (i >= positionals_.size()) throw Error("missing argument: " + what);
   return positionals_[i];
+}
+
+int threads_arg(const Args& args) {
+  const int n = args.get_int("threads", 0);
+  if (n < 0 || n > kMaxThreads)
+    throw Error("--threads must be between 0 (all cores) and " + std::to_string(kMaxThreads) + ", got " +
+                args.get("threads"));
+  return n;
+}
+
+std::vector<float> background_arg(const Args& args, std::vector<float> fallback) {
+  if (!args.has("background")) return fallback;
+  const std::vector<double> v = parse_numbers(args.get("background"), 3, "--background");
+  for (double c : v)
+    if (c < 0 || c > 1)
+      throw Error("--background: each of r,g,b must be in [0, 1], got '" + args.get("background") + "'");
+  return {float(v[0]), float(v[1]), float(v[2])};
 }
 
 std::vector<double> parse_numbers(const std::string& text, size_t count, const std::string& what) {

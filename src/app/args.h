@@ -29,6 +29,11 @@ class Args {
   std::vector<std::string> positionals_;
 };
 
+// --threads N: 0 (all cores) to kMaxThreads; more would only fail to start or waste memory.
+int threads_arg(const Args& args);
+// --background r,g,b with each component in [0, 1].
+std::vector<float> background_arg(const Args& args, std::vector<float> fallback);
+
 // Parses "a,b,c" into doubles, requiring exactly `count` values when count > 0.
 std::vector<double> parse_numbers(const std::string& text, size_t count, const std::string& what);
 

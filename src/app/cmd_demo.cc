@@ -110,7 +110,7 @@ int run_demo(const std::vector<std::string>& argv) {
   const fs::path render_dir = fs::path(out) / "renders";
   fs::create_directories(render_dir);
   RenderSettings s;
-  s.threads = args.get_int("threads", 0);
+  s.threads = threads_arg(args);
   s.background[0] = s.background[1] = s.background[2] = 1.f;
   for (size_t i = 0; i < demo.bundle.cameras.size(); i += 6) {
     const Camera& cam = demo.bundle.cameras[i];

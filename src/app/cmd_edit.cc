@@ -2,8 +2,10 @@
 // toolbox on the command line (see docs/edit.md). Operations chain left to right on one
 // edit session; each prints what it changed.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -11,12 +13,12 @@
 #include "app/args.h"
 #include "app/command.h"
 #include "core/error.h"
+#include "core/output_plan.h"
 #include "core/selection.h"
 #include "edit/checks.h"
 #include "edit/colorize.h"
-#include "edit/combine.h"
+#include "edit/edit_op.h"
 #include "edit/history.h"
-#include "edit/remove.h"
 #include "edit/scene_format.h"
 #include "edit/selection_tools.h"
 #include "edit/transform.h"
@@ -57,14 +59,16 @@ Operations (each acts on the current selection S):
   colorize --color C [--mode replace|balanced]   C: '#RRGGBB' or r,g,b in [0,1]
   scale --factor E          scale S by E > 0 about its centroid
   copy [T]                  paste a transformed copy of S (the copy becomes S)
-  transform [T]             move/rotate/scale S in place
+  transform [T]             move/rotate/scale S in place (`move` is accepted as an alias)
   combine --into OTHER [T]  insert S into scene OTHER; the result is OTHER + S
+  combine --from OTHER [T]  insert all of scene OTHER here; the inserted Gaussians become S
   select [selection] [--combine replace|add|subtract|intersect]
   undo / redo               step back / forward in the history
   T: [--translate x,y,z] [--rotate-deg rx,ry,rz] [--scale s] [--pivot x,y,z]
      rotation about x, then y, then z (world axes), about S's centroid unless --pivot.)";
 
-const std::set<std::string> kOps = {"remove", "extract", "colorize", "scale", "copy", "transform",
+// The edit words (edit_op.h; `move` is the old alias of `transform`) and the session words.
+const std::set<std::string> kOps = {"remove", "extract", "colorize", "scale", "copy", "transform", "move",
                                     "combine", "select", "undo", "redo"};
 const std::set<std::string> kGlobalValue = {"out", "save-selection", "history-mb"};
 const std::set<std::string> kSelectValue = {"selection", "box", "sphere", "opacity-min", "opacity-max",
@@ -86,11 +90,12 @@ std::set<std::string> op_value_flags(const std::string& op) {
     f = {"color", "mode"};
   } else if (op == "scale") {
     f = {"factor"};
-  } else if (op == "copy" || op == "transform") {
+  } else if (op == "copy" || op == "transform" || op == "move") {
     f = kTransformValue;
   } else if (op == "combine") {
     f = kTransformValue;
     f.insert("into");
+    f.insert("from");
   }
   return f;
 }
@@ -135,9 +140,21 @@ Loaded load_any(const std::string& path) {
   return l;
 }
 
+// A scene argument's files: the path itself and, for a trainer folder, its PLY and cameras.
+void plan_scene_inputs(OutputPlan& plan, const std::string& path, const std::string& what) {
+  plan.input(path, what);
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    plan.input(find_scene_ply(path), what + " PLY");
+    plan.input((std::filesystem::path(path) / "cameras.json").string(), what + " cameras");
+  }
+}
+
 Vec3 vec_arg(const Args& a, const std::string& flag, const Vec3& fallback) {
   if (!a.has(flag)) return fallback;
   std::vector<double> v = parse_numbers(a.get(flag), 3, "--" + flag);
+  for (double c : v)
+    if (std::fabs(c) > 1e7) throw Error("--" + flag + ": each component must be within [-1e7, 1e7], got '" + a.get(flag) + "'");
   return {v[0], v[1], v[2]};
 }
 
@@ -147,6 +164,7 @@ Similarity similarity_from(const Args& a) {
   const Vec3 r = vec_arg(a, "rotate-deg", {0, 0, 0});
   t.rotation = rotation_from_euler_deg(r.x, r.y, r.z);
   t.scale = a.get_double("scale", 1.0);
+  if (!(t.scale >= 1e-4 && t.scale <= 1e4)) throw Error("--scale " + a.get("scale") + " is outside [1e-4, 1e4]");
   if (a.has("pivot")) t.pivot = vec_arg(a, "pivot", {});
   return t;
 }
@@ -193,6 +211,31 @@ Selection selection_from(const Args& a, const GaussianScene& scene, std::vector<
   if (a.has("invert")) sel = invert(sel);
   given = have_base || thresholds || a.has("grow") || a.has("invert");
   return sel;
+}
+
+// The operation words of one segment as an EditOp (edit/edit_op.h: the same type the
+// web API fills, so the two cannot drift).
+EditOp edit_op_from(const std::string& word, const Args& a) {
+  EditOp e;
+  e.kind = *parse_edit_kind(word);
+  if (e.kind == EditKind::kColorize) {
+    if (!a.has("color")) throw Error("colorize: --color '#RRGGBB' or r,g,b is required");
+    e.color = parse_color(a.get("color"));
+    e.color_mode = parse_colorize_mode(a.get("mode", "replace"));
+  } else if (e.kind == EditKind::kScale) {
+    if (!a.has("factor")) throw Error("scale: --factor E is required");
+    e.factor = a.get_double("factor", 1.0);
+    if (!(e.factor >= 1e-4 && e.factor <= 1e4)) throw Error("scale: --factor " + a.get("factor") + " is outside [1e-4, 1e4]");
+  } else if (e.kind == EditKind::kCopy || e.kind == EditKind::kTransform || e.kind == EditKind::kCombine) {
+    e.transform = similarity_from(a);
+  }
+  if (e.kind == EditKind::kCombine) {
+    if (a.has("into") == a.has("from")) throw Error("combine: give either --into OTHER_SCENE or --from OTHER_SCENE");
+    e.direction = a.has("into") ? CombineDirection::kInto : CombineDirection::kFrom;
+    e.other_path = a.get(a.has("into") ? "into" : "from");
+  }
+  check_edit_op(e);
+  return e;
 }
 
 void print_selection(const EditSession& e, const char* what) {
@@ -247,9 +290,22 @@ int run_edit(const std::vector<std::string>& argv) {
   if (segs.size() < 2) throw Error("edit: no operation given (remove, extract, colorize, scale, copy, transform, combine, select)");
   const std::string scene_path = head.positional(0, "<scene>: a scene directory or a splat file");
   if (head.positionals().size() > 1) throw Error("edit: unexpected argument '" + head.positionals()[1] + "'");
+  // Every file read (scene, selections, combine targets) against every file written,
+  // before any work: no output may replace an input or the other output.
+  OutputPlan plan;
+  plan_scene_inputs(plan, scene_path, "scene");
+  for (size_t s = 0; s < segs.size(); ++s) {
+    const Args a(segs[s].args, op_value_flags(segs[s].op), op_switch_flags(segs[s].op));
+    for (const std::string& f : a.all("selection")) plan.input(f, "selection file");
+    for (const std::string& f : a.all("into")) plan_scene_inputs(plan, f, "combine target");
+    for (const std::string& f : a.all("from")) plan_scene_inputs(plan, f, "combine source");
+  }
+  plan.output(out, "edited scene (--out)");
+  if (g.has("save-selection")) plan.output(g.get("save-selection"), "selection (--save-selection)");
+  plan.prepare();
   Loaded in = load_any(scene_path);
   std::vector<std::string> inputs{in.file, scene_path};
-  refuse_overwriting_inputs(out, inputs);  // before any work; checked again at the end
+  refuse_overwriting_inputs(out, inputs);  // checked again at the end
   std::printf("scene %s: %zu Gaussians, SH degree %d\n", in.file.c_str(), in.scene.size(), in.scene.sh_degree);
   EditSession session(std::move(in.scene), limits);
   bool given = false;
@@ -267,64 +323,32 @@ int run_edit(const std::vector<std::string>& argv) {
     size_t n_before = session.scene().size();
     const bool had_selection = !session.selection().empty();
     const Vec3 c_before = selection_centroid(session.scene(), session.mask());
-    auto need = [&]() {
-      if (!had_selection)
-        throw Error(op, "the selection is empty: give --selection, --box or --sphere (or `select ...`) first");
-      return session.selection();
-    };
-    Delta d;
-    bool planned = true;
-    if (op == "remove") {
-      d = plan_remove(session.scene(), need());
-    } else if (op == "extract") {
-      d = plan_extract(session.scene(), need());
-    } else if (op == "colorize") {
-      if (!a.has("color")) throw Error("colorize: --color '#RRGGBB' or r,g,b is required");
-      d = plan_colorize(session.scene(), need(), parse_color(a.get("color")),
-                        parse_colorize_mode(a.get("mode", "replace")));
-    } else if (op == "scale") {
-      if (!a.has("factor")) throw Error("scale: --factor E is required");
-      d = plan_scale(session.scene(), need(), a.get_double("factor", 1.0));
-    } else if (op == "copy") {
-      d = plan_copy(session.scene(), need(), similarity_from(a));
-    } else if (op == "transform") {
-      d = plan_transform(session.scene(), need(), similarity_from(a));
-    } else if (op == "combine") {
-      if (!a.has("into")) throw Error("combine: --into OTHER_SCENE is required");
-      Loaded other = load_any(a.get("into"));
-      inputs.push_back(other.file);
-      inputs.push_back(a.get("into"));
-      std::printf("  into %s: %zu Gaussians, SH degree %d\n", other.file.c_str(), other.scene.size(),
-                  other.scene.sh_degree);
-      const Selection sel = need();
-      d = plan_combine(other.scene, std::vector<bool>(other.scene.size(), false), session.scene(), sel,
-                       similarity_from(a));
-      // The session continues on the other scene (its history starts here).
-      n_before = other.scene.size();
-      session = EditSession(std::move(other.scene), limits);
-    } else if (op == "select") {
+    if (op == "select") {
       bool any = false;
       Selection next = selection_from(a, session.scene(), inputs, any);
       if (!any) throw Error("select: give --selection, --box, --sphere, a threshold, --grow or --invert");
-      const std::string mode = a.get("combine", "replace");
-      const Selection cur = session.selection();
-      if (mode == "add") next = unite(cur, next);
-      else if (mode == "subtract") next = subtract(cur, next);
-      else if (mode == "intersect") next = intersect(cur, next);
-      else if (mode != "replace") throw Error("select: --combine must be replace, add, subtract or intersect");
-      session.select(next, "select (" + mode + ")");
-      planned = false;
+      const CombineMode mode = parse_combine_mode(a.get("combine", "replace"));
+      session.select(combine_selections(session.selection(), next, mode),
+                     std::string("select (") + combine_mode_name(mode) + ")");
     } else if (op == "undo" || op == "redo") {
       std::printf("  %s: %s\n", op == "undo" ? "undid" : "redid",
                   (op == "undo" ? session.undo() : session.redo()).c_str());
-      planned = false;
-    }
-    if (planned) {
-      const std::string label = d.label;
-      const std::vector<std::string> notes = d.notes;
-      session.apply(std::move(d));
-      std::printf("  %s\n", label.c_str());
-      for (const auto& n : notes) std::printf("  note: %s\n", n.c_str());
+    } else {
+      if (!had_selection && !(op == "combine" && a.has("from")))
+        throw Error(op, "the selection is empty: give --selection, --box or --sphere (or `select ...`) first");
+      const EditOp e = edit_op_from(op, a);
+      std::optional<Loaded> other;
+      if (e.kind == EditKind::kCombine) {
+        other = load_any(e.other_path);
+        inputs.push_back(other->file);
+        inputs.push_back(e.other_path);
+        std::printf("  %s %s: %zu Gaussians, SH degree %d\n", e.direction == CombineDirection::kInto ? "into" : "from",
+                    other->file.c_str(), other->scene.size(), other->scene.sh_degree);
+      }
+      const EditOutcome r = apply_edit(session, e, other ? &other->scene : nullptr);
+      n_before = r.gaussians_before;
+      std::printf("  %s\n", r.label.c_str());
+      for (const auto& n : r.notes) std::printf("  note: %s\n", n.c_str());
     }
     if (!session.notice().empty()) std::printf("  warning: %s\n", session.notice().c_str());
     const size_t n_after = session.scene().size();

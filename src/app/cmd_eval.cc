@@ -1,11 +1,13 @@
 // isegman eval: segment from prompts and score against ground-truth masks (mIoU, mAcc).
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "app/args.h"
 #include "app/command.h"
 #include "app/segment_args.h"
 #include "core/error.h"
+#include "core/output_plan.h"
 #include "io/atomic_file.h"
 #include "segment/evaluation.h"
 
@@ -19,6 +21,15 @@ int run_eval(const std::vector<std::string>& argv) {
   const std::string path = args.positional(0, "<task dir or folder of task dirs>");
   std::vector<segment::EvalTask> tasks = segment::find_tasks(path);
   SegmentSetup setup = parse_segment_setup(args);
+  if (args.has("json")) {  // checked before the tasks run: never one of their files
+    OutputPlan plan;
+    for (const auto& t : tasks) {
+      plan.input((std::filesystem::path(t.dir) / "prompts.json").string(), "prompts of task " + t.name);
+      for (const auto& m : t.masks) plan.input(m.second, "mask of task " + t.name);
+    }
+    plan.output(args.get("json"), "report (--json)");
+    plan.prepare();
+  }
   auto sam = load_sam(setup);
   nlohmann::json report = nlohmann::json::array();
   double miou = 0, macc = 0, interaction = 0;

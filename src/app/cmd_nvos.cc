@@ -8,6 +8,7 @@
 #include "app/args.h"
 #include "app/command.h"
 #include "core/error.h"
+#include "core/output_plan.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
@@ -30,29 +31,39 @@ int run_nvos_import(const std::vector<std::string>& argv) {
   const int n = args.get_int("clicks", 3);
   if (n < 1 || n > 50) throw Error("--clicks must be between 1 and 50");
   const Camera& cam = *find_camera(b.cameras, view);
-  auto scale_to_camera = [&](std::vector<segment::PromptClick> clicks, const Image& img) {
-    for (auto& c : clicks) {  // scribbles may be drawn at another resolution
-      c.x = std::floor((c.x + 0.5) * cam.width / img.width);
-      c.y = std::floor((c.y + 0.5) * cam.height / img.height);
+  // Scribbles may be drawn at another resolution: a click moves by scaling (core/click.h)
+  // and lands on the centre of the camera pixel it falls in (prompts.json names pixels).
+  auto scale_to_camera = [&](std::vector<Click> clicks, const Image& img) {
+    for (auto& c : clicks) {
+      c = rescaled(c, img.width, img.height, cam.width, cam.height);
+      c = pixel_centre_click(std::floor(c.x), std::floor(c.y), c.label);
     }
     return clicks;
   };
   Image pos = read_image(args.get("pos"), 1);
   auto clicks = scale_to_camera(segment::clicks_from_scribble(pos, n, 1), pos);
   if (clicks.empty()) throw Error(args.get("pos"), "the positive scribble is empty");
-  std::vector<segment::PromptClick> neg;
+  std::vector<Click> neg;
   if (args.has("neg")) {
     Image ni = read_image(args.get("neg"), 1);
     neg = scale_to_camera(segment::clicks_from_scribble(ni, n, 0), ni);
   }
   const fs::path out = args.get("out");
-  fs::create_directories(out / "masks");
+  const std::string mask_file = (out / "masks" / (camera_file_stem(mask_view) + ".png")).string();
+  OutputPlan plan;
+  plan.input(b.ply_path, "scene");
+  plan.input(b.cameras_path, "camera file");
+  for (const char* f : {"pos", "neg", "mask"}) plan.input(args.get(f), std::string("--") + f + " image");
+  plan.output((out / "prompts.json").string(), "prompts");
+  plan.output(mask_file, "ground-truth mask");
+  plan.prepare();
   nlohmann::json p = {{"view", view}, {"positive", nlohmann::json::array()}, {"negative", nlohmann::json::array()}};
-  for (auto& c : clicks) p["positive"].push_back({c.x, c.y});
-  for (auto& c : neg) p["negative"].push_back({c.x, c.y});
+  // prompts.json names pixels: the pixel each click lies in.
+  for (auto& c : clicks) p["positive"].push_back({std::floor(c.x), std::floor(c.y)});
+  for (auto& c : neg) p["negative"].push_back({std::floor(c.x), std::floor(c.y)});
   write_file_atomic((out / "prompts.json").string(), p.dump(1) + "\n");
   Image mask = read_image(args.get("mask"), 1);
-  write_png((out / "masks" / (mask_view + ".png")).string(), mask);
+  write_png(mask_file, mask);
   std::error_code ec;
   fs::remove(out / "scene", ec);
   fs::create_directory_symlink(scene, out / "scene", ec);

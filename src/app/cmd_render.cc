@@ -1,5 +1,6 @@
 // isegman render <scene>: PNG renders of the scene's cameras (colour, optionally depth
 // and alpha), and PSNR against the source photos when they are found.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include "app/command.h"
 #include "app/scene_args.h"
 #include "core/error.h"
+#include "core/output_plan.h"
 #include "io/image_io.h"
 #include "io/atomic_file.h"
 #include "render/rasterizer.h"
@@ -23,11 +25,19 @@ int run_render(const std::vector<std::string>& argv) {
   switches.insert({"depth", "alpha", "compare"});
   Args args(argv, values, switches);
   if (!args.has("out")) throw Error("missing --out DIR");
+  RenderSettings s;
+  s.threads = threads_arg(args);
+  s.sh_degree = args.get_int("sh-degree", -1);
+  if (s.sh_degree < -1 || s.sh_degree > 3)
+    throw Error("--sh-degree must be between 0 and 3 (or -1: the scene's own), got " + args.get("sh-degree"));
+  {
+    const std::vector<float> bg = background_arg(args, {s.background[0], s.background[1], s.background[2]});
+    for (int c = 0; c < 3; ++c) s.background[c] = bg[c];
+  }
+  const int width = args.get_int("width", 0);
+  if (args.has("width") && (width < 8 || width > 16384)) throw Error("--width must be between 8 and 16384");
   SceneBundle b = load_scene_from_args(args);
   const std::string out_dir = args.get("out");
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) throw Error(out_dir, "cannot create output directory: " + ec.message());
 
   std::vector<const Camera*> cams;
   const std::string which = args.get("camera", "all");
@@ -37,26 +47,34 @@ int run_render(const std::vector<std::string>& argv) {
     for (const std::string& key : args.all("camera")) {
       const Camera* c = find_camera(b.cameras, key);
       if (!c) throw Error(b.cameras_path, "no camera with id or name '" + key + "'");
-      cams.push_back(c);
+      if (std::find(cams.begin(), cams.end(), c) == cams.end()) cams.push_back(c);
     }
   }
-  RenderSettings s;
-  s.threads = args.get_int("threads", 0);
-  s.sh_degree = args.get_int("sh-degree", -1);
-  if (args.has("background")) {
-    auto bg = parse_numbers(args.get("background"), 3, "--background");
-    for (int c = 0; c < 3; ++c) s.background[c] = float(bg[c]);
+  // Every file this run reads or writes, checked before the first render: a camera name
+  // is untrusted (it becomes a file name), and no render may replace a photo, the scene,
+  // the cameras or another render.
+  OutputPlan plan;
+  plan.input(b.ply_path, "scene");
+  plan.input(b.cameras_path, "camera file");
+  for (const Camera& c : b.cameras) plan.input(c.image_path, "photo of camera '" + c.name + "'");
+  std::vector<std::string> stems;
+  for (const Camera* c : cams) {
+    const std::string stem = (fs::path(out_dir) / camera_file_stem(c->name)).string();
+    plan.output(stem + ".png", "render of camera '" + c->name + "'");
+    if (args.has("alpha")) plan.output(stem + "_alpha.png", "alpha of camera '" + c->name + "'");
+    if (args.has("depth")) plan.output(stem + "_depth.png", "depth of camera '" + c->name + "'");
+    stems.push_back(stem);
   }
-  const int width = args.get_int("width", 0);
-  if (args.has("width") && (width < 8 || width > 16384)) throw Error("--width must be between 8 and 16384");
+  plan.prepare();
   const bool compare = args.has("compare");
   double psnr_sum = 0;
   int psnr_n = 0;
-  for (const Camera* c0 : cams) {
+  for (size_t k = 0; k < cams.size(); ++k) {
+    const Camera* c0 = cams[k];
     Camera cam = *c0;
     if (width > 0) cam = cam.resized(width, std::max(1, int(std::lround(double(c0->height) * width / c0->width))));
     RenderOutput r = render(b.gaussians, cam, s);
-    const std::string stem = (fs::path(out_dir) / cam.name).string();
+    const std::string& stem = stems[k];
     write_png(stem + ".png", r.color);
     std::printf("%-24s %4dx%-4d %8zu visible  %6.1f ms", cam.name.c_str(), cam.width, cam.height, r.stats.visible,
                 r.stats.ms_preprocess + r.stats.ms_sort + r.stats.ms_raster);

@@ -6,6 +6,7 @@
 #include "app/args.h"
 #include "app/command.h"
 #include "core/error.h"
+#include "core/output_plan.h"
 #include "io/image_io.h"
 #include "models/sam.h"
 
@@ -41,19 +42,25 @@ int run_sam(const std::vector<std::string>& argv) {
   for (const auto& p : args.all("point")) {
     std::vector<double> v = parse_numbers(p, 0, "--point x,y[,label]");
     if (v.size() != 2 && v.size() != 3) throw Error("--point " + p, "expected x,y or x,y,label");
-    models::Click c;
-    c.x = v[0];
-    c.y = v[1];
-    c.label = v.size() == 3 ? int(v[2]) : 1;
+    // --point i,j names pixel (i, j) (as SAM's tools do): the click is its centre.
+    models::Click c = pixel_centre_click(v[0], v[1], v.size() == 3 ? int(v[2]) : 1);
     if (c.label != 0 && c.label != 1) throw Error("--point " + p, "label must be 1 (positive) or 0 (negative)");
     clicks.push_back(c);
   }
   if (clicks.empty()) throw Error("isegman sam", "give at least one --point x,y[,label]");
   std::string out = args.get("out");
   if (out.empty()) throw Error("isegman sam", "--out mask.png is required");
+  OutputPlan plan;
+  plan.input(image_path, "image");
+  plan.input(encoder, "SAM encoder");
+  plan.input(decoder, "SAM decoder");
+  plan.output(out, "mask (--out)");
+  if (args.has("save-logits")) plan.output(args.get("save-logits"), "logits (--save-logits)");
+  if (args.has("overlay")) plan.output(args.get("overlay"), "overlay (--overlay)");
+  plan.prepare();
 
   double t0 = now_ms();
-  auto model = std::make_shared<models::SamModel>(encoder, decoder, args.get_int("threads", 0));
+  auto model = std::make_shared<models::SamModel>(encoder, decoder, threads_arg(args));
   double t_load = now_ms() - t0;
   Image img = read_image(image_path, 3);
   for (const auto& c : clicks)
@@ -96,6 +103,12 @@ int run_sam(const std::vector<std::string>& argv) {
   std::printf("image:          %s (%dx%d)\n", image_path.c_str(), img.width, img.height);
   std::printf("iou prediction: %.4f (mask %d of the decoder's outputs)\n", r.score, r.mask_index);
   std::printf("mask:           %zu pixels (%.1f %%) -> %s\n", on, 100.0 * on / r.mask.data.size(), out.c_str());
+  for (size_t c = 0; c < r.candidates.size(); ++c) {  // every candidate, for inspection
+    size_t px = 0;
+    for (float v : r.candidates[c].data) px += v > 0.5f;
+    std::printf("candidate %zu:    iou prediction %.4f, %zu pixels (%.1f %%)\n", c, r.candidate_scores[c], px,
+                100.0 * px / r.mask.data.size());
+  }
   std::printf("timings:        load %.0f ms, preprocess %.1f ms, encoder %.1f ms%s, decoder %.1f ms\n", t_load,
               enc.preprocess_ms, enc.encoder_ms, enc.from_cache ? " (cached embedding)" : "", dec_ms);
   return 0;

@@ -7,6 +7,7 @@
 #include "app/scene_args.h"
 #include "app/segment_args.h"
 #include "core/error.h"
+#include "core/output_plan.h"
 #include "core/selection.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
@@ -19,15 +20,15 @@ namespace fs = std::filesystem;
 namespace isegman::app {
 namespace {
 
-std::vector<segment::PromptClick> parse_clicks(const Args& args) {
-  std::vector<segment::PromptClick> clicks;
+std::vector<Click> parse_clicks(const Args& args) {
+  std::vector<Click> clicks;
   for (const std::string& c : args.all("click")) {
     auto v = parse_numbers(c, 2, "--click");
-    clicks.push_back({v[0], v[1], 1});
+    clicks.push_back(pixel_centre_click(v[0], v[1], 1));  // --click i,j names pixel (i, j)
   }
   for (const std::string& c : args.all("neg")) {
     auto v = parse_numbers(c, 2, "--neg");
-    clicks.push_back({v[0], v[1], 0});
+    clicks.push_back(pixel_centre_click(v[0], v[1], 0));
   }
   if (clicks.empty()) throw Error("give at least one --click x,y");
   return clicks;
@@ -43,12 +44,22 @@ int run_segment(const std::vector<std::string>& argv) {
   if (!args.has("view")) throw Error("missing --view ID|NAME (the camera the clicks are in)");
   SceneBundle b = load_scene_from_args(args);
   const std::string out = args.get("out");
-  refuse_overwriting_inputs(out, {b.ply_path, b.cameras_path});
-  if (args.has("ply")) refuse_overwriting_inputs(args.get("ply"), {b.ply_path, b.cameras_path});
+  // Every input and output, checked (and the folders created) before minutes of work.
+  OutputPlan plan;
+  plan.input(b.ply_path, "scene");
+  plan.input(b.cameras_path, "camera file");
+  for (const Camera& c : b.cameras) plan.input(c.image_path, "photo of camera '" + c.name + "'");
+  plan.output(out, "selection (--out)");
+  if (args.has("ply")) plan.output(args.get("ply"), "selected Gaussians (--ply)");
+  if (args.has("overlays"))
+    for (const Camera& c : b.cameras)
+      plan.output((fs::path(args.get("overlays")) / (camera_file_stem(c.name) + ".png")).string(),
+                  "overlay of camera '" + c.name + "'");
+  plan.prepare();
   const Camera* cam = find_camera(b.cameras, args.get("view"));
   if (!cam) throw Error(b.cameras_path, "no camera with id or name '" + args.get("view") + "'");
   const int camera_index = int(cam - b.cameras.data());
-  const std::vector<segment::PromptClick> clicks = parse_clicks(args);
+  const std::vector<Click> clicks = parse_clicks(args);
   SegmentSetup setup = parse_segment_setup(args);
   auto sam = load_sam(setup);
 
@@ -86,10 +97,9 @@ int run_segment(const std::vector<std::string>& argv) {
   }
   if (args.has("overlays")) {
     const fs::path dir = args.get("overlays");
-    fs::create_directories(dir);
     for (size_t k = 0; k < session->views().size(); ++k) {
       const auto& v = session->views()[k];
-      write_png((dir / (v.name + ".png")).string(),
+      write_png((dir / (camera_file_stem(v.name) + ".png")).string(),
                 segment::make_overlay(v.rgb, session->view_states()[k], session->selection_coverage(int(k))));
     }
     std::printf("wrote overlays to %s (blue: SAM mask, orange: 3D selection, dots: clicks, border: "
@@ -103,7 +113,7 @@ std::string usage() {
   return std::string(
              "usage: isegman segment <scene> --view ID|NAME --click x,y [--click x,y ...] [--neg x,y ...]\n"
              "                       --out SELECTION.isel [--ply SELECTED.ply] [--overlays DIR] [options]\n"
-             "  Clicks are pixel coordinates in that camera's image (x right, y down). Each click is a\n"
+             "  --click i,j names pixel (i, j) of that camera's image (x right, y down). Each click is a\n"
              "  round of the interactive method: propagated to every view, segmented by SAM, inspected\n"
              "  and voted into the 3D selection.\n") +
          kSegmentOptionsHelp;

@@ -11,6 +11,7 @@
 #include "app/command.h"
 #include "app/scene_args.h"
 #include "core/error.h"
+#include "core/output_plan.h"
 #include "core/selection.h"
 #include "edit/image_editor.h"
 #include "edit/semantic_edit.h"
@@ -59,7 +60,18 @@ int run_semantic(const std::vector<std::string>& argv) {
 
   SceneBundle b = load_scene_from_args(args);
   const std::string sel_path = args.get("selection");
-  refuse_overwriting_inputs(out, {b.ply_path, sel_path, b.cameras_path});
+  // Check every output now, not after minutes of optimisation.
+  OutputPlan plan;
+  plan.input(b.ply_path, "scene");
+  plan.input(b.cameras_path, "camera file");
+  plan.input(sel_path, "selection file");
+  plan.output(out, "edited scene (--out)");
+  if (args.has("save-views"))
+    for (const Camera& c : b.cameras)
+      for (const char* kind : {"_before", "_target", "_after"})
+        plan.output((fs::path(args.get("save-views")) / (camera_file_stem(c.name) + kind + ".png")).string(),
+                    std::string("view") + kind + " of camera '" + c.name + "'");
+  plan.prepare();
   Selection sel = read_selection(sel_path);
   sel.check_matches(b.gaussians, sel_path);
   if (sel.empty()) throw Error(sel_path, "the selection is empty");
@@ -93,11 +105,11 @@ int run_semantic(const std::vector<std::string>& argv) {
   o.rates.opacity *= lr_scale;
   o.rates.scale *= lr_scale;
   o.rates.rotation *= lr_scale;
-  if (args.has("background")) {
-    auto bg = parse_numbers(args.get("background"), 3, "--background");
-    for (int c = 0; c < 3; ++c) o.background[c] = float(bg[c]);
+  {
+    const std::vector<float> bg = background_arg(args, {o.background[0], o.background[1], o.background[2]});
+    for (int c = 0; c < 3; ++c) o.background[c] = bg[c];
   }
-  o.threads = args.get_int("threads", 0);
+  o.threads = threads_arg(args);
   o.seed = unsigned(args.get_int("seed", 1));
   o.progress_every = std::max(1, o.steps / 30);
   o.progress = [](const edit::SemanticProgress& p) {
@@ -129,14 +141,11 @@ int run_semantic(const std::vector<std::string>& argv) {
               r.seconds_optimising, r.seconds_editing, r.editor_calls, r.mean_mask_psnr, out.c_str());
   if (args.has("save-views")) {
     const std::string dir = args.get("save-views");
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec) throw Error(dir, "cannot create folder: " + ec.message());
     RenderSettings rs;
     for (int c = 0; c < 3; ++c) rs.background[c] = o.background[c];
     rs.threads = o.threads;
     for (const auto& v : r.views) {
-      const std::string stem = (fs::path(dir) / v.camera.name).string();
+      const std::string stem = (fs::path(dir) / camera_file_stem(v.camera.name)).string();
       write_png(stem + "_before.png", v.original);
       write_png(stem + "_target.png", v.target);
       write_png(stem + "_after.png", render(r.scene, v.camera, rs).color);

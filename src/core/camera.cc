@@ -1,6 +1,8 @@
 #include "core/camera.h"
 
 #include <cmath>
+#include <cstdint>
+#include <map>
 #include <cstdlib>
 
 #include "core/error.h"
@@ -59,11 +61,22 @@ void Camera::validate(const std::string& source) const {
   if (width <= 0 || height <= 0)
     throw Error(source, who + " has a zero or negative image size " + std::to_string(width) +
                             "x" + std::to_string(height));
-  if (width > 65536 || height > 65536)
+  // Bounded so every buffer sized from a camera fits in memory (2^28 pixels = 1 GiB RGBA).
+  if (width > kMaxImageSide || height > kMaxImageSide || int64_t(width) * height > kMaxImagePixels)
     throw Error(source, who + " has an implausible image size " + std::to_string(width) + "x" +
-                            std::to_string(height));
+                            std::to_string(height) + " (at most " + std::to_string(kMaxImageSide) +
+                            " per side and " + std::to_string(kMaxImagePixels) + " pixels)");
   if (!(std::isfinite(fx) && std::isfinite(fy) && fx > 0 && fy > 0))
     throw Error(source, who + " has a non-positive or non-finite focal length");
+  if (fx > kMaxFocal || fy > kMaxFocal)
+    throw Error(source, who + " has an implausible focal length fx=" + std::to_string(fx) +
+                            " fy=" + std::to_string(fy) + " (at most 1e7 pixels)");
+  if (std::fabs(cx) > kMaxFocal || std::fabs(cy) > kMaxFocal)
+    throw Error(source, who + " has an implausible principal point (|cx|, |cy| at most 1e7 pixels)");
+  for (char ch : name)
+    if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f)
+      throw Error(source, "camera " + std::to_string(id) + " has a name with a control character (NUL included)");
+  if (name.size() > 1024) throw Error(source, "camera " + std::to_string(id) + " has a name longer than 1024 bytes");
   if (!(std::isfinite(cx) && std::isfinite(cy)))
     throw Error(source, who + " has a non-finite principal point");
   for (int r = 0; r < 3; ++r) {
@@ -77,6 +90,20 @@ void Camera::validate(const std::string& source) const {
       if (std::fabs(rrt.m[r][c] - (r == c ? 1.0 : 0.0)) > 1e-3)
         throw Error(source, who + " has a rotation that is not orthonormal");
   if (R.det() < 0) throw Error(source, who + " has a reflection, not a rotation");
+}
+
+void validate_camera_set(const std::vector<Camera>& cameras, const std::string& source) {
+  std::map<int, size_t> ids;
+  std::map<std::string, size_t> names;
+  for (size_t i = 0; i < cameras.size(); ++i) {
+    const Camera& c = cameras[i];
+    if (!ids.emplace(c.id, i).second)
+      throw Error(source, "two cameras have the id " + std::to_string(c.id) + " (entries " +
+                              std::to_string(ids[c.id]) + " and " + std::to_string(i) + "); ids must be unique");
+    if (!c.name.empty() && !names.emplace(c.name, i).second)
+      throw Error(source, "two cameras are named '" + c.name.substr(0, 80) + "' (entries " +
+                              std::to_string(names[c.name]) + " and " + std::to_string(i) + "); names must be unique");
+  }
 }
 
 const Camera* find_camera(const std::vector<Camera>& cameras, const std::string& key) {

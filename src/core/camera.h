@@ -3,12 +3,19 @@
 // covering [i, i+1) x [j, j+1), so its centre is (i + 0.5, j + 0.5) (COLMAP convention).
 #pragma once
 
+#include <cstdint>
+
 #include <string>
 #include <vector>
 
 #include "core/math.h"
 
 namespace isegman {
+
+// Limits of a plausible camera (validate()): image side, pixel count, focal length.
+constexpr int kMaxImageSide = 32768;
+constexpr int64_t kMaxImagePixels = int64_t(1) << 28;
+constexpr double kMaxFocal = 1e7;
 
 struct Camera {
   int id = 0;
@@ -45,6 +52,10 @@ struct Camera {
   // Checks sizes, focal lengths and the rotation; throws Error naming `source`.
   void validate(const std::string& source) const;
 };
+
+// Throws Error(source, ...) when two cameras share an id or a name (one would be
+// unreachable and its renders overwritten).
+void validate_camera_set(const std::vector<Camera>& cameras, const std::string& source);
 
 // Finds a camera by numeric id or by name; nullptr when absent.
 const Camera* find_camera(const std::vector<Camera>& cameras, const std::string& id_or_name);

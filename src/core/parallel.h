@@ -5,12 +5,20 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <stdexcept>
 #include <functional>
 #include <mutex>
+#include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
+#include "core/error.h"
+
 namespace isegman {
+
+// The most worker threads a command accepts (--threads); more only costs memory.
+constexpr int kMaxThreads = 256;
 
 inline int resolve_threads(int requested) {
   if (requested > 0) return requested;
@@ -38,9 +46,22 @@ inline void parallel_for(size_t tasks, int threads, const std::function<void(int
     }
   };
   std::vector<std::thread> pool;
-  for (int w = 1; w < workers; ++w) pool.emplace_back(body, w);
-  body(0);
+  pool.reserve(size_t(workers));
+  std::string start_failure;
+  for (int w = 1; w < workers; ++w) {
+    try {
+      pool.emplace_back(body, w);
+    } catch (const std::exception& e) {
+      // Out of threads or memory: stop the tasks, join what started, then report.
+      start_failure = "cannot start worker thread " + std::to_string(w + 1) + " of " + std::to_string(workers) +
+                      " (" + e.what() + "); use fewer threads (--threads)";
+      next = tasks;
+      break;
+    }
+  }
+  if (start_failure.empty()) body(0);
   for (auto& t : pool) t.join();
+  if (!start_failure.empty()) throw Error(start_failure);
   if (error) std::rethrow_exception(error);
 }
 

@@ -77,7 +77,7 @@ std::vector<Camera> load_file(const std::string& path, CameraLoadReport* report)
 
 }  // namespace
 
-std::vector<Camera> load_cameras(const std::string& path, CameraLoadReport* report) {
+std::vector<Camera> load_cameras_any(const std::string& path, CameraLoadReport* report) {
   std::error_code ec;
   if (!fs::is_directory(path, ec)) return load_file(path, report);
   // A folder: a COLMAP model (or a scene with sparse/0, sparse/), else one known file.
@@ -88,6 +88,14 @@ std::vector<Camera> load_cameras(const std::string& path, CameraLoadReport* repo
   }
   throw Error(path, "no cameras found in this folder (looked for a COLMAP model in it, sparse/0 or sparse/, "
                     "and for transforms.json, poses_bounds.npy, cameras.json)");
+}
+
+// Every format goes through one uniqueness check: duplicate ids or names would make a
+// camera unreachable and let one render overwrite another.
+std::vector<Camera> load_cameras(const std::string& path, CameraLoadReport* report) {
+  std::vector<Camera> cams = load_cameras_any(path, report);
+  validate_camera_set(cams, path);
+  return cams;
 }
 
 }  // namespace isegman

@@ -307,8 +307,8 @@ GaussianScene parse_ply(const uint8_t* data, size_t size, const std::string& src
   if (binary) {
     // Skip elements stored before the vertices (a count the file cannot hold is refused
     // before walking it, and elements without properties take no bytes at all).
-    for (size_t e = 0; e < vi; ++e) {
-      if (elements[e].props.empty()) continue;
+    auto skip_element = [&](size_t e) {
+      if (elements[e].props.empty()) return;
       size_t min_record = 0;
       for (const auto& q : elements[e].props) min_record += q.is_list ? q.count_size : q.size;
       if (elements[e].count > uint64_t(end - p) / min_record)
@@ -327,7 +327,8 @@ GaussianScene parse_ply(const uint8_t* data, size_t size, const std::string& src
             p += q.size;
           }
         }
-    }
+    };
+    for (size_t e = 0; e < vi; ++e) skip_element(e);
     if (fixed_stride && size_t(end - p) < n * stride)
       throw Error(src, "truncated: expected " + std::to_string(n * stride) + " bytes of Gaussian data, found " +
                            std::to_string(end - p));
@@ -357,6 +358,11 @@ GaussianScene parse_ply(const uint8_t* data, size_t size, const std::string& src
         p += q.size;
       }
     }
+    for (size_t e = vi + 1; e < elements.size(); ++e) skip_element(e);
+    // Bytes after the last element are not part of any PLY: a corrupt or concatenated file.
+    if (p != end)
+      throw Error(src, std::to_string(end - p) + " trailing bytes after the end of the PLY data (the header "
+                       "declares " + std::to_string(n) + " Gaussians); the file is corrupt or has data appended");
   } else {
     AsciiTokens tok(p, end, src);
     // Skip elements stored before the vertices (each ASCII value takes at least 2 bytes).

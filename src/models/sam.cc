@@ -404,16 +404,25 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
   double sx = double(emb.resized_width) / emb.image_width, sy = double(emb.resized_height) / emb.image_height;
   int64_t n = int64_t(clicks.size()) + 1;
   std::vector<float> coords, labels;
+  int box_corners = 0;
   for (const Click& c : clicks) {
-    if (c.label != 0 && c.label != 1) throw Error("SAM: click label must be 1 (positive) or 0 (negative)");
-    coords.push_back(float(c.x * sx));
-    coords.push_back(float(c.y * sy));
+    if (c.label < 0 || c.label > 3)
+      throw Error("SAM: click label must be 1 (positive), 0 (negative), or 2 / 3 (box corners)");
+    box_corners += c.label >= 2;
+    // SAM takes pixel indices (its prompt encoder adds 0.5 to reach the pixel centre);
+    // our clicks are continuous (core/click.h): the centre of pixel i is i + 0.5.
+    coords.push_back(float((c.x - 0.5) * sx));
+    coords.push_back(float((c.y - 0.5) * sy));
     labels.push_back(float(c.label));
   }
-  // No box: the export expects one padding point (0, 0) with label -1.
-  coords.push_back(0.f);
-  coords.push_back(0.f);
-  labels.push_back(-1.f);
+  if (box_corners != 0 && box_corners != 2) throw Error("SAM: a box needs both corners (labels 2 and 3)");
+  if (box_corners == 0) {  // no box: the export expects one padding point (0, 0) with label -1
+    coords.push_back(0.f);
+    coords.push_back(0.f);
+    labels.push_back(-1.f);
+  } else {
+    --n;
+  }
   const ValueInfo& mask_info = info("mask_input");
   int64_t lr = mask_info.dims.size() == 4 && mask_info.dims[2] > 0 ? mask_info.dims[2] : 4 * emb.features.shape[2];
   std::vector<float> mask(size_t(lr * lr), 0.f);
@@ -461,6 +470,17 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
   std::vector<float> lowf = as_floats(low, "low_res_masks");
   size_t plane = size_t(low.shape[2]) * low.shape[3];
   r.low_res_logits.assign(lowf.begin() + best * plane, lowf.begin() + (best + 1) * plane);
+  for (int64_t c = 0; c < k; ++c) {
+    Image cand(emb.image_width, emb.image_height, 1);
+    const size_t off = size_t(c) * emb.image_width * emb.image_height;
+    if (masks.dtype == DType::Float32)
+      for (size_t i = 0; i < cand.data.size(); ++i) cand.data[i] = masks.data<float>()[off + i] > 0.f ? 1.f : 0.f;
+    else
+      for (size_t i = 0; i < cand.data.size(); ++i) cand.data[i] = masks.data<uint8_t>()[off + i] ? 1.f : 0.f;
+    r.candidates.push_back(std::move(cand));
+    r.candidate_scores.push_back(iou[size_t(c)]);
+    r.candidate_low_res.emplace_back(lowf.begin() + c * plane, lowf.begin() + (c + 1) * plane);
+  }
   if (timings) timings->decoder_ms = now_ms() - t0;
   return r;
 }

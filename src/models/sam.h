@@ -73,7 +73,8 @@ class SamModel {
   // writes it after encoding. An empty cache_dir disables the cache.
   SamEmbedding encode_cached(const Image& rgb, const std::string& cache_dir, SamTimings* timings = nullptr) const;
 
-  // Runs the prompt decoder. Clicks in SAM's pixel convention; at least one click.
+  // Runs the prompt decoder. Clicks in continuous pixel coordinates (core/click.h); at
+  // least one click.
   // previous_low_res: low_res_logits of an earlier result on the same embedding.
   SegmentResult decode(const SamEmbedding& embedding, const std::vector<Click>& clicks,
                        const std::vector<float>* previous_low_res = nullptr, SamTimings* timings = nullptr) const;

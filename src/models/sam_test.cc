@@ -209,7 +209,9 @@ TEST_P(SamReference, MatchesOnnxRuntime) {
   std::vector<SegmentResult> results;
   for (const auto& p : rec["prompts"]) {
     std::vector<Click> clicks;
-    for (const auto& pt : p["points"]) clicks.push_back({pt[0].get<double>(), pt[1].get<double>(), pt[2].get<int>()});
+    // The reference points are in SAM's convention (pixel indices): pixel i is centred at i + 0.5.
+    for (const auto& pt : p["points"])
+      clicks.push_back(pixel_centre_click(pt[0].get<double>(), pt[1].get<double>(), pt[2].get<int>()));
     int prev = p["previous"].get<int>();
     SegmentResult r = predictor.predict(clicks, prev >= 0 ? &results[size_t(prev)].low_res_logits : nullptr);
     std::vector<uint8_t> want = decode_rle(p["mask_rle"], r.mask.data.size());

@@ -4,18 +4,17 @@
 
 #include <vector>
 
+#include "core/click.h"
 #include "core/image.h"
 #include "models/feature_map.h"
 
 namespace isegman::models {
 
-// A click in image pixel coordinates, SAM's convention: (x, y) names the clicked pixel, x to
-// the right, y down; integer values are pixel indices (SAM shifts to the pixel centre itself).
-// label 1 = positive (include), 0 = negative (exclude).
-struct Click {
-  double x = 0, y = 0;
-  int label = 1;
-};
+// The one click type (core/click.h): continuous pixel coordinates, pixel (i, j) covers
+// [i, i+1) x [j, j+1). SAM's point convention differs by half a pixel; sam.cc converts.
+// Labels: 1 positive, 0 negative; 2 and 3 are a box's top-left and bottom-right corners
+// (SAM's box prompt, at most one box).
+using Click = isegman::Click;
 
 struct SegmentResult {
   Image mask;                      // width x height of the image, 1 channel, values 0 or 1
@@ -23,6 +22,11 @@ struct SegmentResult {
   std::vector<float> low_res_logits;  // low_res_size^2 logits over the padded model frame
   int low_res_size = 0;               // 256 for SAM
   int mask_index = 0;                 // which of the decoder's candidate masks was chosen
+  // Every candidate the decoder returned (SAM's multimask output: whole, part, subpart),
+  // with its predicted IoU, so a caller can choose by other evidence.
+  std::vector<Image> candidates;
+  std::vector<float> candidate_scores;
+  std::vector<std::vector<float>> candidate_low_res;
 };
 
 class Segmenter2D {

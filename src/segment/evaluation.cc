@@ -37,11 +37,12 @@ EvalTask read_task(const std::string& dir) {
     for (const auto& p : j[key]) {
       if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
         throw Error(prompts, std::string("\"") + key + "\" must be a list of [x, y] pairs");
-      t.clicks.push_back({p[0].get<double>(), p[1].get<double>(), std::string(key) == "positive" ? 1 : 0});
+      // [x, y] names a pixel: the click is its centre (core/click.h).
+      t.clicks.push_back(pixel_centre_click(p[0].get<double>(), p[1].get<double>(), std::string(key) == "positive" ? 1 : 0));
     }
   }
   // Positive clicks first: the first round must select something.
-  std::stable_sort(t.clicks.begin(), t.clicks.end(), [](const PromptClick& a, const PromptClick& b) {
+  std::stable_sort(t.clicks.begin(), t.clicks.end(), [](const Click& a, const Click& b) {
     return a.label > b.label;
   });
   if (t.clicks.empty() || t.clicks.front().label != 1) throw Error(prompts, "needs at least one positive click");

@@ -15,7 +15,7 @@ namespace isegman::segment {
 
 struct EvalTask {
   std::string name, dir, scene_dir, view;
-  std::vector<PromptClick> clicks;
+  std::vector<Click> clicks;  // pixel centres of prompts.json's [x, y]
   std::vector<std::pair<std::string, std::string>> masks;  // (camera name, mask file)
 };
 

@@ -43,9 +43,9 @@ Image make_overlay(const Image& rgb, const ViewState& st, const Image& coverage)
         }
       }
   const double r = std::max(4.0, 0.012 * std::max(rgb.width, rgb.height));
-  for (const ViewClick& c : st.clicks) {
+  for (const Click& c : st.clicks) {
     const float col[3] = {c.label ? 0.1f : 0.95f, c.label ? 0.9f : 0.1f, 0.1f};
-    disc(out, c.u, c.v, r, col);
+    disc(out, c.x, c.y, r, col);
   }
   // Border: green accepted, red dropped, grey not segmented.
   const float green[3] = {0.1f, 0.85f, 0.2f}, red[3] = {0.95f, 0.1f, 0.1f}, grey[3] = {0.5f, 0.5f, 0.5f};

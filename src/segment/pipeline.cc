@@ -13,7 +13,7 @@ int view_of_camera(const Session& s, int camera_index) {
 }
 
 std::unique_ptr<Session> segment_from_prompts(const SceneBundle& b, int camera_index,
-                                              const std::vector<PromptClick>& clicks,
+                                              const std::vector<Click>& clicks,
                                               std::shared_ptr<const models::SamModel> sam,
                                               const SessionOptions& so, const ViewOptions& vo,
                                               const std::string& views_spec, PipelineTimings* timings,
@@ -22,7 +22,7 @@ std::unique_ptr<Session> segment_from_prompts(const SceneBundle& b, int camera_i
   if (clicks.empty()) throw Error("segmentation needs at least one click");
   if (clicks.front().label != 1) throw Error("the first click must be positive");
   const Camera& cam = b.cameras[size_t(camera_index)];
-  for (const PromptClick& c : clicks)
+  for (const Click& c : clicks)
     if (!(c.x >= 0 && c.y >= 0 && c.x < cam.width && c.y < cam.height))
       throw Error("click (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ") lies outside camera '" +
                   cam.name + "' (" + std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
@@ -35,9 +35,8 @@ std::unique_ptr<Session> segment_from_prompts(const SceneBundle& b, int camera_i
   auto session = std::make_unique<Session>(b.gaussians, std::move(views), std::move(sam), so);
   const int v = view_of_camera(*session, camera_index);
   const Camera& work = session->views()[size_t(v)].camera;
-  const double sx = double(work.width) / cam.width, sy = double(work.height) / cam.height;
-  for (const PromptClick& c : clicks) {
-    RoundReport r = session->click(v, {(c.x + 0.5) * sx, (c.y + 0.5) * sy, c.label});
+  for (const Click& c : clicks) {
+    RoundReport r = session->click(v, rescaled(c, cam.width, cam.height, work.width, work.height));
     t.ms_propagation += r.ms_propagation;
     t.ms_sam += r.ms_sam;
     t.ms_voting += r.ms_voting;

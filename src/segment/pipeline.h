@@ -11,13 +11,6 @@
 
 namespace isegman::segment {
 
-// A click in a camera's own image, pixel coordinates as SAM takes them (x, y of the
-// clicked pixel; its centre is x + 0.5, y + 0.5). label 1 positive, 0 negative.
-struct PromptClick {
-  double x = 0, y = 0;
-  int label = 1;
-};
-
 struct PipelineTimings {
   double ms_views = 0, ms_propagation = 0, ms_sam = 0, ms_voting = 0;
   int views = 0, rounds = 0;
@@ -26,7 +19,7 @@ struct PipelineTimings {
 
 // The clicked camera is always among the views. Returns the session after the last click.
 std::unique_ptr<Session> segment_from_prompts(const SceneBundle& bundle, int camera_index,
-                                              const std::vector<PromptClick>& clicks,
+                                              const std::vector<Click>& clicks,
                                               std::shared_ptr<const models::SamModel> sam,
                                               const SessionOptions& session_options, const ViewOptions& view_options,
                                               const std::string& views_spec, PipelineTimings* timings = nullptr,

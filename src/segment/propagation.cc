@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
 #include "segment/epipolar.h"
@@ -43,12 +44,12 @@ bool surface_point(const SegmentView& view, double u, double v, double min_alpha
   return true;
 }
 
-Propagated propagate(const SegmentView& from, const ViewClick& click, const SegmentView& to,
+Propagated propagate(const SegmentView& from, const Click& click, const SegmentView& to,
                      const PropagationOptions& opt, double scene_extent) {
   Propagated out;
   out.click.label = click.label;
   Vec3 X;
-  bool have_point = opt.mode != PropagationMode::Epipolar && surface_point(from, click.u, click.v, opt.min_alpha, X);
+  bool have_point = opt.mode != PropagationMode::Epipolar && surface_point(from, click.x, click.y, opt.min_alpha, X);
   double pu = 0, pv = 0;
   if (have_point) {
     double z;
@@ -60,8 +61,11 @@ Propagated propagate(const SegmentView& from, const ViewClick& click, const Segm
     pixel_of(to, pu, pv, x, y);
     const double surface = to.depth.at(x, y);
     if (to.alpha.at(x, y) >= opt.min_alpha && z > surface * (1 + opt.occlusion_tolerance)) {
-      if (opt.mode == PropagationMode::Depth) {
-        out.reason = "occluded";
+      if (opt.mode == PropagationMode::Depth || !opt.hidden_fallback) {
+        char why[128];
+        std::snprintf(why, sizeof why, "hidden: the clicked point lies at depth %.3g behind the surface at %.3g", z,
+                      surface);
+        out.reason = why;
         return out;
       }
       // Hybrid: the clicked surface point is hidden here, but the object may still show
@@ -71,8 +75,8 @@ Propagated propagate(const SegmentView& from, const ViewClick& click, const Segm
     }
     if (have_point && opt.mode == PropagationMode::Depth) {
       out.sent = true;
-      out.click.u = pu;
-      out.click.v = pv;
+      out.click.x = pu;
+      out.click.y = pv;
       out.affinity = 1.f;
       return out;
     }
@@ -86,7 +90,7 @@ Propagated propagate(const SegmentView& from, const ViewClick& click, const Segm
   const models::FeatureMap& dst_features = to.features;
   Point2 a, b;
   const double t_max = std::max(1.0, scene_extent) * 1e3;
-  if (!epipolar_segment(from.camera, click.u, click.v, to.camera, 1e-6, t_max, a, b)) {
+  if (!epipolar_segment(from.camera, click.x, click.y, to.camera, 1e-6, t_max, a, b)) {
     out.reason = "epipolar line outside the view";
     return out;
   }
@@ -97,7 +101,7 @@ Propagated propagate(const SegmentView& from, const ViewClick& click, const Segm
                                            dst_features.valid_rows());
   double wx = 0, wy = 0;
   if (have_point) dst_features.pixel_to_grid(pu, pv, wx, wy);
-  const std::vector<float> query = src_features.sample(click.u, click.v);
+  const std::vector<float> query = src_features.sample(click.x, click.y);
   float best = -2.f;
   int bx = -1, by = -1;
   for (const auto& [gx, gy] : cells) {
@@ -115,8 +119,8 @@ Propagated propagate(const SegmentView& from, const ViewClick& click, const Segm
   if (bx < 0) {
     if (have_point) {  // the window holds no line cell (rounding at the border): trust depth
       out.sent = true;
-      out.click.u = pu;
-      out.click.v = pv;
+      out.click.x = pu;
+      out.click.y = pv;
       out.affinity = 0.f;
       return out;
     }
@@ -138,8 +142,8 @@ Propagated propagate(const SegmentView& from, const ViewClick& click, const Segm
     }
   }
   out.sent = true;
-  out.click.u = std::clamp(px, 0.0, double(to.camera.width) - 1e-3);
-  out.click.v = std::clamp(py, 0.0, double(to.camera.height) - 1e-3);
+  out.click.x = std::clamp(px, 0.0, double(to.camera.width) - 1e-3);
+  out.click.y = std::clamp(py, 0.0, double(to.camera.height) - 1e-3);
   out.affinity = best;
   return out;
 }

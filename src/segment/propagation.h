@@ -10,6 +10,7 @@
 
 #include <string>
 
+#include "core/click.h"
 #include "segment/views.h"
 
 namespace isegman::segment {
@@ -18,21 +19,20 @@ enum class PropagationMode { Epipolar, Depth, Hybrid };
 PropagationMode parse_mode(const std::string& name);
 const char* mode_name(PropagationMode mode);
 
-struct ViewClick {
-  double u = 0, v = 0;  // continuous pixel coordinates in the view
-  int label = 1;        // 1 positive, 0 negative
-};
-
 struct PropagationOptions {
   PropagationMode mode = PropagationMode::Hybrid;
   double window_cells = 2.0;     // hybrid: search radius around the reprojection, in grid cells
   double occlusion_tolerance = 0.05;  // relative depth slack before a point counts as hidden
   double min_alpha = 0.5;        // a pixel with less accumulated alpha has no surface
+  // Hybrid, when the clicked point is hidden in a view: false (default) sends no click
+  // there (the view may still be prompted from the 3D selection); true searches the whole
+  // epipolar line as the paper does, which often lands on the occluder.
+  bool hidden_fallback = false;
 };
 
 struct Propagated {
   bool sent = false;
-  ViewClick click;
+  Click click;
   float affinity = 0;   // feature similarity of the match (epipolar / hybrid)
   std::string reason;   // why it was not sent
 };
@@ -40,7 +40,7 @@ struct Propagated {
 // 3D point under a view's pixel at the rendered expected depth; false without surface.
 bool surface_point(const SegmentView& view, double u, double v, double min_alpha, Vec3& point);
 
-Propagated propagate(const SegmentView& from, const ViewClick& click, const SegmentView& to,
+Propagated propagate(const SegmentView& from, const Click& click, const SegmentView& to,
                      const PropagationOptions& options, double scene_extent);
 
 }  // namespace isegman::segment

@@ -5,7 +5,7 @@
 
 namespace isegman::segment {
 
-std::vector<PromptClick> clicks_from_scribble(const Image& scribble, int count, int label) {
+std::vector<Click> clicks_from_scribble(const Image& scribble, int count, int label) {
   std::vector<std::pair<int, int>> px;
   for (int y = 0; y < scribble.height; ++y)
     for (int x = 0; x < scribble.width; ++x) {
@@ -13,7 +13,7 @@ std::vector<PromptClick> clicks_from_scribble(const Image& scribble, int count, 
       for (int c = 0; c < scribble.channels; ++c) on |= scribble.at(x, y, c) > 0.f;
       if (on) px.emplace_back(x, y);
     }
-  std::vector<PromptClick> out;
+  std::vector<Click> out;
   if (px.empty() || count <= 0) return out;
   double mx = 0, my = 0;
   for (auto& [x, y] : px) {
@@ -33,7 +33,7 @@ std::vector<PromptClick> clicks_from_scribble(const Image& scribble, int count, 
     }
   }
   while (int(out.size()) < count) {
-    out.push_back({double(px[pick].first), double(px[pick].second), label});
+    out.push_back(pixel_centre_click(px[pick].first, px[pick].second, label));
     size_t next = 0;
     double far = -1;
     for (size_t i = 0; i < px.size(); ++i) {

@@ -11,6 +11,6 @@ namespace isegman::segment {
 
 // Up to `count` pixels of the scribble (non-zero pixels), spread out by farthest-point
 // sampling starting from the pixel nearest the scribble's centroid. Deterministic.
-std::vector<PromptClick> clicks_from_scribble(const Image& scribble, int count, int label);
+std::vector<Click> clicks_from_scribble(const Image& scribble, int count, int label);
 
 }  // namespace isegman::segment

@@ -10,11 +10,11 @@ TEST(Scribbles, FarthestPointClicksSpreadAlongTheStroke) {
   for (int x = 10; x < 90; ++x) s.at(x, 25) = 1.f;  // a horizontal stroke
   auto clicks = clicks_from_scribble(s, 3, 1);
   ASSERT_EQ(clicks.size(), 3u);
-  EXPECT_NEAR(clicks[0].x, 49.5, 0.6);  // starts at the centroid
+  EXPECT_NEAR(clicks[0].x, 50.0, 0.6);  // starts at the centroid
   // Then the two ends, the farthest points.
-  EXPECT_TRUE((clicks[1].x == 10 && clicks[2].x == 89) || (clicks[1].x == 89 && clicks[2].x == 10));
+  EXPECT_TRUE((clicks[1].x == 10.5 && clicks[2].x == 89.5) || (clicks[1].x == 89.5 && clicks[2].x == 10.5));  // pixel centres
   for (const auto& c : clicks) {
-    EXPECT_EQ(c.y, 25);
+    EXPECT_EQ(c.y, 25.5);
     EXPECT_EQ(c.label, 1);
   }
 }

@@ -17,7 +17,7 @@ const char* status_name(ViewStatus s) {
     case ViewStatus::Accepted: return "accepted";
     case ViewStatus::NoClicks: return "no positive click reached it";
     case ViewStatus::EmptyMask: return "SAM returned an empty mask";
-    case ViewStatus::NoOverlap: return "dropped by inspection: the mask misses the current selection";
+    case ViewStatus::NoOverlap: return "dropped by inspection: the mask disagrees with the current selection";
     case ViewStatus::Skipped: return "skipped";
   }
   return "?";
@@ -64,13 +64,22 @@ Image Session::selection_coverage(int view) const {
   return rasterize(views_.at(size_t(view)).frame, s, &values).value;
 }
 
-RoundReport Session::click(int view, const ViewClick& c) {
+RoundReport Session::click(int view, const Click& c) {
   if (view < 0 || view >= int(views_.size())) throw Error("click: no view " + std::to_string(view));
   const Camera& cam = views_[size_t(view)].camera;
-  if (!(c.u >= 0 && c.v >= 0 && c.u < cam.width && c.v < cam.height))
-    throw Error("click (" + std::to_string(c.u) + ", " + std::to_string(c.v) + ") is outside view '" +
+  if (!(c.x >= 0 && c.y >= 0 && c.x < cam.width && c.y < cam.height))
+    throw Error("click (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ") is outside view '" +
                 views_[size_t(view)].name + "' (" + std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
   if (c.label != 0 && c.label != 1) throw Error("click label must be 1 (positive) or 0 (negative)");
+  // The same click again (a double click, a repeated request) is not new information.
+  for (const UserClick& old : state_.clicks)
+    if (old.view == view && old.click.label == c.label && std::floor(old.click.x) == std::floor(c.x) &&
+        std::floor(old.click.y) == std::floor(c.y)) {
+      RoundReport same;
+      same.duplicate = true;
+      same.selected = size_t(std::count(state_.selection.begin(), state_.selection.end(), true));
+      return same;
+    }
   State next;  // run_round derives the views, votes and selection from the clicks
   next.clicks = state_.clicks;
   next.clicks.push_back({view, c});
@@ -87,9 +96,129 @@ bool Session::undo() {
   return true;
 }
 
+namespace {
+
+struct Agreement {
+  int mask = 0, coverage = 0, both = 0;
+  double iou() const { return mask + coverage - both > 0 ? double(both) / (mask + coverage - both) : 0.0; }
+  double mask_on_selection() const { return mask ? double(both) / mask : 0.0; }
+  double selection_inside() const { return coverage ? double(both) / coverage : 0.0; }
+};
+
+Agreement agreement(const Image& mask, const Image& coverage) {
+  Agreement a;
+  for (size_t i = 0; i < mask.data.size(); ++i) {
+    const bool m = mask.data[i] > 0.5f, c = coverage.data[i] > 0.5f;
+    a.mask += m;
+    a.coverage += c;
+    a.both += m && c;
+  }
+  return a;
+}
+
+Image selection_values_coverage(const SegmentView& view, const std::vector<float>& values, int threads) {
+  RenderSettings rs;
+  rs.color = false;
+  rs.depth = false;
+  rs.threads = threads;
+  return rasterize(view.frame, rs, &values).value;
+}
+
+std::vector<float> as_values(const std::vector<bool>& sel) {
+  std::vector<float> v(sel.size());
+  for (size_t i = 0; i < v.size(); ++i) v[i] = sel[i] ? 1.f : 0.f;
+  return v;
+}
+
+// The candidate most consistent with the rendered selection (IoU); SAM's own choice
+// when the selection is not visible.
+int choose(const models::SegmentResult& r, const Image* coverage, int min_pixels) {
+  if (!coverage || r.candidates.empty()) return r.mask_index;
+  int covered = 0;
+  for (float v : coverage->data) covered += v > 0.5f;
+  if (covered < min_pixels) return r.mask_index;
+  int best = r.mask_index;
+  double best_iou = -1;
+  for (size_t c = 0; c < r.candidates.size(); ++c) {
+    const double iou = agreement(r.candidates[c], *coverage).iou();
+    if (iou > best_iou + 1e-9) {
+      best_iou = iou;
+      best = int(c);
+    }
+  }
+  return best;
+}
+
+void take_candidate(ViewState& vs, const models::SegmentResult& r, int c) {
+  const Image& m = r.candidates.empty() ? r.mask : r.candidates[size_t(c)];
+  const Image* cut = vs.sam_negative ? &vs.sam_negative->mask : nullptr;
+  vs.mask.resize(m.data.size());
+  vs.mask_pixels = 0;
+  for (size_t i = 0; i < m.data.size(); ++i) {
+    vs.mask[i] = m.data[i] > 0.5f && !(cut && cut->data[i] > 0.5f);
+    vs.mask_pixels += vs.mask[i];
+  }
+  vs.candidate = c;
+  vs.sam_score = r.candidate_scores.empty() ? r.score : r.candidate_scores[size_t(c)];
+  vs.low_res = r.candidate_low_res.empty() ? r.low_res_logits : r.candidate_low_res[size_t(c)];
+}
+
+// A box around the rendered selection and its most interior pixel (largest chamfer
+// distance to the selection's border): the prompt for a view no click reached.
+bool prompt_from_coverage(const Image& cov, std::vector<models::Click>& prompt) {
+  const int w = cov.width, h = cov.height;
+  int x0 = w, y0 = h, x1 = -1, y1 = -1;
+  std::vector<int> dist(size_t(w) * h, 0);
+  const int inf = 1 << 20;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (cov.at(x, y) > 0.5f) {
+        dist[size_t(y) * w + x] = inf;
+        x0 = std::min(x0, x);
+        y0 = std::min(y0, y);
+        x1 = std::max(x1, x);
+        y1 = std::max(y1, y);
+      }
+  if (x1 < 0) return false;
+  auto at = [&](int x, int y) -> int& { return dist[size_t(y) * w + x]; };
+  for (int y = 0; y < h; ++y)  // two-pass chamfer (3-4) distance, image border counts as outside
+    for (int x = 0; x < w; ++x) {
+      int& d = at(x, y);
+      if (!d) continue;
+      d = std::min(d, (x > 0 ? at(x - 1, y) : 0) + 3);
+      d = std::min(d, (y > 0 ? at(x, y - 1) : 0) + 3);
+      d = std::min(d, (x > 0 && y > 0 ? at(x - 1, y - 1) : 0) + 4);
+      d = std::min(d, (x + 1 < w && y > 0 ? at(x + 1, y - 1) : 0) + 4);
+    }
+  int bx = 0, by = 0, best = -1;
+  for (int y = h - 1; y >= 0; --y)
+    for (int x = w - 1; x >= 0; --x) {
+      int& d = at(x, y);
+      if (!d) continue;
+      d = std::min(d, (x + 1 < w ? at(x + 1, y) : 0) + 3);
+      d = std::min(d, (y + 1 < h ? at(x, y + 1) : 0) + 3);
+      d = std::min(d, (x + 1 < w && y + 1 < h ? at(x + 1, y + 1) : 0) + 4);
+      d = std::min(d, (x > 0 && y + 1 < h ? at(x - 1, y + 1) : 0) + 4);
+      if (d >= best) {
+        best = d;
+        bx = x;
+        by = y;
+      }
+    }
+  const double mx = 0.05 * (x1 - x0 + 1) + 2, my = 0.05 * (y1 - y0 + 1) + 2;
+  // Continuous pixel coordinates (core/click.h): the centre of pixel i is i + 0.5.
+  prompt = {{bx + 0.5, by + 0.5, 1},
+            {std::max(0.0, x0 - mx) + 0.5, std::max(0.0, y0 - my) + 0.5, 2},
+            {std::min(w - 1.0, x1 + mx) + 0.5, std::min(h - 1.0, y1 + my) + 0.5, 3}};
+  return true;
+}
+
+}  // namespace
+
 RoundReport Session::run_round(State& next, const State& prev) {
   RoundReport rep;
   const size_t V = views_.size();
+  const SessionOptions& o = options_;
   // 1. Propagate every click to every view (EIP).
   auto t0 = Clock::now();
   std::vector<ViewState> fresh(V);
@@ -99,7 +228,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         fresh[k].clicks.push_back(uc.click);
         continue;
       }
-      Propagated p = propagate(views_[size_t(uc.view)], uc.click, views_[k], options_.propagation, scene_extent_);
+      Propagated p = propagate(views_[size_t(uc.view)], uc.click, views_[k], o.propagation, scene_extent_);
       if (p.sent) fresh[k].clicks.push_back(p.click);
       else fresh[k].not_sent.push_back(p.reason);
     }
@@ -109,59 +238,87 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // 2. SAM in every view that has a positive click.
   t0 = Clock::now();
   std::atomic<int> segmented{0};
+  std::vector<std::shared_ptr<const models::SegmentResult>> results(V);
   // Small decoder graphs scale poorly over cores: decode several views side by side, each
   // on one core, then give the calling thread back its own thread count.
-  const int workers = std::max(1, options_.sam_workers);
+  const int workers = std::max(1, o.sam_workers);
   struct RestoreThreads {  // the calling thread decodes too: give it its count back, even on a throw
     int n = models::threads_of_this_thread();
     ~RestoreThreads() { models::limit_threads_of_this_thread(n); }
   };
-  {
+  // Negative clicks as regions: what SAM segments at a negative click (with the positive
+  // clicks as its negatives) is cut from the view's mask, so a negative click removes
+  // what it points at and leaves the rest of SAM's mask alone.
+  std::vector<std::shared_ptr<const models::SegmentResult>> negatives(V);
+  auto decode_views = [&](const std::vector<size_t>& which, const std::vector<std::vector<models::Click>>& prompts,
+                          const std::vector<const std::vector<float>*>& previous,
+                          std::vector<std::shared_ptr<const models::SegmentResult>>& into) {
     RestoreThreads restore_threads;
-    parallel_for(V, workers, [&](int, size_t k) {
+    parallel_for(which.size(), workers, [&](int, size_t i) {
       if (workers > 1) models::limit_threads_of_this_thread(1);
+      into[which[i]] = std::make_shared<const models::SegmentResult>(
+          sam_->decode(views_[which[i]].embedding, prompts[i], previous[i]));
+      ++segmented;
+    });
+  };
+  {
+    std::vector<size_t> which, which_neg;
+    std::vector<std::vector<models::Click>> prompts, prompts_neg;
+    std::vector<const std::vector<float>*> previous;
+    for (size_t k = 0; k < V; ++k) {
       ViewState& vs = fresh[k];
-      const bool positive = std::any_of(vs.clicks.begin(), vs.clicks.end(), [](const ViewClick& c) { return c.label == 1; });
+      const bool positive = std::any_of(vs.clicks.begin(), vs.clicks.end(), [](const Click& c) { return c.label == 1; });
       if (!positive) {
         vs.status = ViewStatus::NoClicks;
-        return;
+        continue;
       }
       vs.status = ViewStatus::Skipped;  // until inspection decides
-      // Reuse last round's result when this view's clicks did not change.
+      std::vector<models::Click> clicks, inverted;
+      for (const Click& sc : vs.clicks) {
+        if (sc.label == 1 || !o.negative_regions) clicks.push_back(sc);
+        inverted.push_back({sc.x, sc.y, 1 - sc.label});
+      }
+      const bool has_negative = o.negative_regions && inverted.size() > clicks.size();
       const ViewState& old = prev.views[k];
-      bool same = old.clicks.size() == vs.clicks.size() && !old.low_res.empty();
-      for (size_t i = 0; same && i < vs.clicks.size(); ++i)
-        same = old.clicks[i].u == vs.clicks[i].u && old.clicks[i].v == vs.clicks[i].v &&
-               old.clicks[i].label == vs.clicks[i].label;
-      if (same) {
-        vs.mask = old.mask;
-        vs.mask_pixels = old.mask_pixels;
-        vs.sam_score = old.sam_score;
-        vs.low_res = old.low_res;
-        return;
+      // Reuse last round's answers for what did not change in this view.
+      auto same_clicks = [&](bool positives_only) {
+        std::vector<const Click*> a, b;
+        for (const Click& c : old.clicks)
+          if (!positives_only || c.label == 1) a.push_back(&c);
+        for (const Click& c : vs.clicks)
+          if (!positives_only || c.label == 1) b.push_back(&c);
+        if (a.size() != b.size()) return false;
+        for (size_t i = 0; i < a.size(); ++i)
+          if (a[i]->x != b[i]->x || a[i]->y != b[i]->y || a[i]->label != b[i]->label) return false;
+        return true;
+      };
+      const bool fresh_old = old.sam && !old.from_selection;
+      if (fresh_old && same_clicks(o.negative_regions)) {
+        results[k] = old.sam;
+      } else {
+        which.push_back(k);
+        prompts.push_back(std::move(clicks));
+        previous.push_back(o.reuse_previous_mask && fresh_old && !old.low_res.empty() ? &old.low_res : nullptr);
       }
-      std::vector<models::Click> clicks;
-      for (const ViewClick& c : vs.clicks) clicks.push_back({c.u - 0.5, c.v - 0.5, c.label});  // SAM: pixel indices
-      const std::vector<float>* previous =
-          options_.reuse_previous_mask && !old.low_res.empty() ? &old.low_res : nullptr;
-      models::SegmentResult r = sam_->decode(views_[k].embedding, clicks, previous);
-      ++segmented;
-      vs.mask.resize(r.mask.data.size());
-      vs.mask_pixels = 0;
-      for (size_t i = 0; i < r.mask.data.size(); ++i) {
-        vs.mask[i] = r.mask.data[i] > 0.5f;
-        vs.mask_pixels += vs.mask[i];
+      if (has_negative) {
+        if (old.sam_negative && same_clicks(false)) {
+          negatives[k] = old.sam_negative;
+        } else {
+          which_neg.push_back(k);
+          prompts_neg.push_back(std::move(inverted));
+        }
       }
-      vs.sam_score = r.score;
-      vs.low_res = std::move(r.low_res_logits);
-    });
+    }
+    decode_views(which, prompts, previous, results);
+    decode_views(which_neg, prompts_neg, std::vector<const std::vector<float>*>(which_neg.size(), nullptr), negatives);
   }
   rep.views_segmented = segmented;
   rep.ms_sam = ms_since(t0);
 
   // 3. Inspection and voting: the latest clicked view first, then the others nearest
-  //    first; each mask votes only if it overlaps the selection rendered so far.
+  //    first; each mask votes only if it agrees with the selection rendered so far.
   t0 = Clock::now();
+  double ms_sam_later = 0;
   const int anchor = next.clicks.back().view;
   std::vector<size_t> order(V);
   std::iota(order.begin(), order.end(), 0);
@@ -170,70 +327,143 @@ RoundReport Session::run_round(State& next, const State& prev) {
     if ((a == size_t(anchor)) != (b == size_t(anchor))) return a == size_t(anchor);
     return norm(views_[a].camera.center() - anchor_centre) < norm(views_[b].camera.center() - anchor_centre);
   });
-  // Votes are additive: start from the previous round's and update view by view.
+  // A round is a function of the clicks: votes start empty and every view is re-judged.
   VoteAccumulator& acc = next.votes;
-  acc = prev.votes;
-  for (size_t k = 0; k < V; ++k)
-    if (prev.views[k].status == ViewStatus::Accepted) acc.add(prev.views[k].positive, views_[k].all_votes, -1);
+  acc = VoteAccumulator(scene_.size());
   bool first = true;
-  std::vector<bool> current;
+
+  // Votes of one view's mask, gated to the target's depth layer.
+  // `raw` (optional): the mask's votes already computed in the inspection pass.
+  auto vote = [&](size_t k, ViewState& vs, const std::vector<bool>* selection, ViewVotes* raw) {
+    const SegmentView& view = views_[k];
+    if (raw) vs.positive = std::move(*raw);
+    else vs.positive = masked_votes(view.frame, mask_image(vs.mask, view.camera.width, view.camera.height), o.threads);
+    vs.neutral = ViewVotes{};
+    if (o.depth_layers) {
+      std::vector<double> seeds;
+      for (const Click& c : vs.clicks) {
+        if (c.label != 1) continue;
+        const int x = std::clamp(int(c.x), 0, view.camera.width - 1), y = std::clamp(int(c.y), 0, view.camera.height - 1);
+        if (view.alpha.at(x, y) > 0.5f && view.depth.at(x, y) > 0) seeds.push_back(view.depth.at(x, y));
+      }
+      GateReport g = gate_by_depth(scene_, view.camera, vs.positive, vs.neutral, seeds, selection, o.layer_options);
+      vs.depth_layers = g.layers;
+      vs.gated_share = g.gated_share;
+    }
+    acc.add(vs.positive, view.all_votes, +1, &vs.neutral);
+    vs.status = ViewStatus::Accepted;
+    ++rep.accepted;
+  };
+
   for (size_t k : order) {
     ViewState& vs = fresh[k];
     if (vs.status == ViewStatus::NoClicks) continue;
+    const models::SegmentResult& r = *results[k];
+    vs.sam = results[k];
+    vs.sam_negative = negatives[k];
+    const bool inspect = !first && o.inspection;
+    std::vector<bool> current;
+    Image coverage;
+    ViewVotes raw;
+    bool have_raw = false;
+    const bool several = r.candidates.size() > 1 && o.choose_candidate;
+    if (inspect || (!first && several)) {
+      current = acc.select(o.tau, o.min_total_weight);
+      const std::vector<float> values = as_values(current);
+      if (several) {  // the coverage decides the candidate, then the candidate's votes
+        coverage = selection_values_coverage(views_[k], values, o.threads);
+        take_candidate(vs, r, choose(r, &coverage, o.min_coverage_pixels));
+      } else {  // one pass gives the selection's coverage and the mask's votes
+        take_candidate(vs, r, r.mask_index);
+        if (vs.mask_pixels > 0) {
+          raw = masked_votes(views_[k].frame, mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height),
+                             o.threads, &values, &coverage, o.agreement_inspection);
+          have_raw = true;
+        }
+      }
+    } else {
+      take_candidate(vs, r, r.mask_index);
+    }
     if (vs.mask_pixels == 0) {
       vs.status = ViewStatus::EmptyMask;
       ++rep.dropped;
       continue;
     }
-    const SegmentView& view = views_[k];
-    const Image mask = mask_image(vs.mask, view.camera.width, view.camera.height);
-    const ViewState& old = prev.views[k];
-    const bool inspect = !first && options_.inspection;
-    const bool reuse = old.status == ViewStatus::Accepted && old.mask == vs.mask;
-    std::vector<float> values;
     if (inspect) {
-      current = acc.select(options_.tau, options_.min_total_weight);
-      values.resize(current.size());
-      for (size_t i = 0; i < values.size(); ++i) values[i] = current[i] ? 1.f : 0.f;
-    }
-    // One pass gives both the mask's votes and, for inspection, the selection's coverage
-    // (votes of an unchanged mask are reused from the last round).
-    Image coverage;
-    ViewVotes positive;
-    if (reuse) {
-      positive = old.positive;
-      if (inspect) {
-        RenderSettings rs;
-        rs.color = false;
-        rs.depth = false;
-        rs.threads = options_.threads;
-        const std::vector<uint8_t> tiles = tiles_under_mask(mask, view.frame.grid_x, view.frame.grid_y);
-        coverage = rasterize(view.frame, rs, &values, nullptr, &tiles).value;
-      }
-    } else {
-      positive = masked_votes(view.frame, mask, options_.threads, inspect ? &values : nullptr,
-                              inspect ? &coverage : nullptr);
-    }
-    if (inspect) {
-      int overlap = 0;
-      for (size_t i = 0; i < vs.mask.size(); ++i) overlap += vs.mask[i] && coverage.data[i] > 0.5f;
-      vs.overlap = double(overlap) / vs.mask_pixels;
-      if (overlap == 0 || vs.overlap < options_.min_overlap) {
+      const Agreement a = agreement(mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height), coverage);
+      vs.overlap = a.mask_on_selection();
+      vs.selection_inside = a.selection_inside();
+      vs.iou = a.iou();
+      vs.inspected = true;
+      const bool ok = o.agreement_inspection
+                          ? a.coverage >= o.min_coverage_pixels && vs.selection_inside >= o.min_selection_inside &&
+                                vs.overlap >= o.min_mask_on_selection
+                          : a.both > 0 && vs.overlap >= o.min_overlap;
+      if (!ok) {
         vs.status = ViewStatus::NoOverlap;
         ++rep.dropped;
         continue;
       }
     }
+    vote(k, vs, first ? nullptr : &current, have_raw ? &raw : nullptr);
     first = false;
-    vs.positive = std::move(positive);
-    acc.add(vs.positive, view.all_votes, +1);
-    vs.status = ViewStatus::Accepted;
-    ++rep.accepted;
   }
+
+  // 4. Views no click reached: prompt SAM from the selection rendered in them.
+  for (int round = 0; round < o.selection_prompt_rounds && !first; ++round) {
+    const std::vector<bool> current = acc.select(o.tau, o.min_total_weight);
+    const std::vector<float> values = as_values(current);
+    std::vector<size_t> which;
+    std::vector<std::vector<models::Click>> prompts;
+    std::vector<Image> coverages;
+    for (size_t k : order) {
+      ViewState& vs = fresh[k];
+      if (vs.status != ViewStatus::NoClicks && !(vs.from_selection && vs.status == ViewStatus::NoOverlap)) continue;
+      Image cov = selection_values_coverage(views_[k], values, o.threads);
+      int covered = 0;
+      for (float v : cov.data) covered += v > 0.5f;
+      std::vector<models::Click> prompt;
+      if (covered < o.min_coverage_pixels || !prompt_from_coverage(cov, prompt)) continue;
+      which.push_back(k);
+      prompts.push_back(std::move(prompt));
+      coverages.push_back(std::move(cov));
+    }
+    if (which.empty()) break;
+    auto ts = Clock::now();
+    decode_views(which, prompts, std::vector<const std::vector<float>*>(which.size(), nullptr), results);
+    ms_sam_later += ms_since(ts);
+    int accepted = 0;
+    for (size_t i = 0; i < which.size(); ++i) {
+      const size_t k = which[i];
+      ViewState& vs = fresh[k];
+      vs.from_selection = true;
+      vs.sam = results[k];
+      take_candidate(vs, *results[k], choose(*results[k], &coverages[i], o.min_coverage_pixels));
+      const Agreement a = agreement(mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height), coverages[i]);
+      vs.overlap = a.mask_on_selection();
+      vs.selection_inside = a.selection_inside();
+      vs.iou = a.iou();
+      vs.inspected = true;
+      const bool agrees = vs.iou >= o.min_prompt_iou ||
+                          (vs.selection_inside >= o.min_prompt_inside && vs.overlap >= o.min_prompt_on_selection);
+      if (vs.mask_pixels == 0 || !agrees) {
+        vs.status = ViewStatus::NoOverlap;
+        continue;
+      }
+      vote(k, vs, &current, nullptr);
+      ++rep.prompted;
+      ++accepted;
+    }
+    if (!accepted) break;
+  }
+  for (const ViewState& vs : fresh)
+    if (vs.from_selection && vs.status == ViewStatus::NoOverlap) ++rep.dropped;
   next.views = std::move(fresh);
-  next.selection = acc.select(options_.tau, options_.min_total_weight);
+  next.selection = acc.select(o.tau, o.min_total_weight);
   rep.selected = size_t(std::count(next.selection.begin(), next.selection.end(), true));
-  rep.ms_voting = ms_since(t0);
+  rep.views_segmented = segmented;
+  rep.ms_sam += ms_sam_later;
+  rep.ms_voting = ms_since(t0) - ms_sam_later;
   return rep;
 }
 

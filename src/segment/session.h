@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "models/sam.h"
+#include "segment/depth_layers.h"
 #include "segment/propagation.h"
 #include "segment/views.h"
 #include "segment/votes.h"
@@ -23,18 +24,40 @@ struct SessionOptions {
   bool reuse_previous_mask = true; // feed each view's previous low-res mask back to SAM
   int threads = 0;
   int sam_workers = 2;             // views decoded by SAM at the same time
+
+  // Beyond the paper; each can be switched off (isegman ablation measures them).
+  // Gate each mask's votes to the target's depth layer (no vote for what a gap shows).
+  bool depth_layers = true;
+  DepthLayerOptions layer_options;
+  // IIM by agreement: a mask must hold most of the selection rendered in its view and be
+  // partly covered by it (both directions), instead of merely touching it.
+  bool agreement_inspection = true;
+  double min_selection_inside = 0.5;   // share of the rendered selection inside the mask
+  double min_mask_on_selection = 0.1;  // share of the mask the rendered selection covers
+  int min_coverage_pixels = 30;        // less rendered selection is no evidence
+  // Among SAM's candidate masks, take the one most consistent with the 3D selection.
+  bool choose_candidate = true;
+  // Views no click reached (point out of frame or hidden) are prompted from the selection
+  // rendered in them (a box and an interior point, as SA3D does), for this many rounds.
+  int selection_prompt_rounds = 2;
+  // A prompted mask has no click of its own, so it must agree more: hold this share of the
+  // rendered selection and be covered this much by it (or reach min_prompt_iou).
+  double min_prompt_inside = 0.7, min_prompt_on_selection = 0.3, min_prompt_iou = 0.5;
+  // Negative clicks cut what SAM segments at them from the mask, instead of being given
+  // to SAM as negative points (which reshapes the whole mask unpredictably).
+  bool negative_regions = true;
 };
 
 struct UserClick {
   int view = 0;
-  ViewClick click;
+  Click click;
 };
 
 enum class ViewStatus { Accepted, NoClicks, EmptyMask, NoOverlap, Skipped };
 const char* status_name(ViewStatus s);
 
 struct ViewState {
-  std::vector<ViewClick> clicks;       // the clicks SAM got in this view
+  std::vector<Click> clicks;       // the clicks SAM got in this view
   std::vector<std::string> not_sent;   // why other clicks did not reach this view
   std::vector<uint8_t> mask;           // SAM mask at the view's working resolution (0/1)
   int mask_pixels = 0;
@@ -42,13 +65,24 @@ struct ViewState {
   std::vector<float> low_res;          // SAM low-res logits, for the next round
   ViewStatus status = ViewStatus::NoClicks;
   double overlap = 0;                  // IIM: share of the mask covered by the selection
+  double selection_inside = 0;         // IIM: share of the rendered selection inside the mask
+  double iou = 0;                      // IIM: IoU of the mask and the rendered selection
+  bool from_selection = false;         // prompted from the rendered selection, not a click
+  int candidate = 0;                   // which of SAM's candidates was used
+  int depth_layers = 0;                // depth layers the mask's content splits into
+  double gated_share = 0;              // share of the mask's weight outside the target's layer
+  bool inspected = false;              // overlap was measured (not for the clicked view, which votes first)
   ViewVotes positive;                  // P-votes of the mask (when accepted)
+  ViewVotes neutral;                   // depth-gated weights that count neither way
+  std::shared_ptr<const models::SegmentResult> sam;  // SAM's answer (every candidate), shared with history
+  std::shared_ptr<const models::SegmentResult> sam_negative;  // the region of the negative clicks, cut from the mask
 };
 
 struct RoundReport {
   double ms_propagation = 0, ms_sam = 0, ms_voting = 0;
-  int views_segmented = 0, accepted = 0, dropped = 0;
+  int views_segmented = 0, accepted = 0, dropped = 0, prompted = 0;
   size_t selected = 0;
+  bool duplicate = false;  // the click repeated an earlier one: nothing changed
 };
 
 class Session {
@@ -60,7 +94,7 @@ class Session {
   int add_view(SegmentView view);
   // A click in view `view` at continuous pixel coordinates of that view's working
   // resolution; label 1 positive, 0 negative. Runs a full round.
-  RoundReport click(int view, const ViewClick& click);
+  RoundReport click(int view, const Click& click);
   // Removes the last click; false when there is none.
   bool undo();
 

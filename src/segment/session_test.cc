@@ -43,9 +43,12 @@ std::vector<bool> label_mask(const std::vector<int>& labels, int object) {
   return m;
 }
 
-bool find_click(const DemoScene& demo, int object, int& camera, PromptClick& click) {
-  click.label = 1;
-  return demo_click(demo, object, camera, click.x, click.y);
+// A positive click at the centre of the pixel demo_click picks.
+bool find_click(const DemoScene& demo, int object, int& camera, Click& click) {
+  double x = 0, y = 0;
+  if (!demo_click(demo, object, camera, x, y)) return false;
+  click = pixel_centre_click(x, y, 1);
+  return true;
 }
 
 // Mean IoU of the selection's rendered mask against the true object's, over the views.
@@ -79,7 +82,7 @@ TEST(SegmentationEndToEnd, SelectsEachDemoObjectFromOneClick) {
   double miou = 0;
   for (size_t o = 0; o < demo.objects.size(); ++o) {
     int cam = -1;
-    PromptClick click;
+    Click click;
     ASSERT_TRUE(find_click(demo, int(o), cam, click)) << demo.objects[o].name;
     PipelineTimings t;
     auto session = segment_from_prompts(demo.bundle, cam, {click}, sam, so, view_options(), "50%", &t);
@@ -103,15 +106,20 @@ TEST(SegmentationEndToEnd, UndoRestoresTheSelectionBitExactly) {
   opt.height = 360;
   DemoScene demo = make_demo_scene(opt);
   int cam = -1;
-  PromptClick click;
+  Click click;
   ASSERT_TRUE(find_click(demo, 1, cam, click));
   auto s = segment_from_prompts(demo.bundle, cam, {click}, sam, SessionOptions(), view_options(), "25%");
   const std::vector<bool> first = s->selection();
   const VoteAccumulator votes = s->votes();
   const int v = view_of_camera(*s, cam);
-  // A second, negative click on the ground changes the state...
+  // The same click again is no new information: nothing changes and it is not a round.
+  const RoundReport again = s->click(v, click);
+  EXPECT_TRUE(again.duplicate);
+  EXPECT_EQ(s->selection(), first);
+  EXPECT_EQ(s->clicks().size(), 1u);
+  // A negative click on the ground and a second positive one change the state...
   s->click(v, {20.5, double(s->views()[size_t(v)].camera.height) - 20.5, 0});
-  s->click(v, {click.x + 0.5, click.y + 0.5, 1});
+  s->click(v, {click.x + 3.0, click.y, 1});
   EXPECT_FALSE(s->votes() == votes);
   // ...and undoing both restores it exactly.
   ASSERT_TRUE(s->undo());

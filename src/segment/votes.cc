@@ -70,19 +70,22 @@ ViewVotes total_votes(const PreparedFrame& frame, int threads) {
 }
 
 ViewVotes masked_votes(const PreparedFrame& frame, const Image& mask, int threads, const std::vector<float>* values,
-                       Image* coverage) {
+                       Image* coverage, bool full_coverage) {
   if (mask.width != frame.camera.width || mask.height != frame.camera.height || mask.channels != 1)
     throw Error("masked_votes: mask does not match the view's resolution");
   VoteVisitor v(frame.gaussians, &mask);
   std::vector<uint8_t> tiles = tiles_under_mask(mask, frame.grid_x, frame.grid_y);
+  if (full_coverage && values) std::fill(tiles.begin(), tiles.end(), uint8_t(1));
   RenderOutput r = rasterize(frame, vote_settings(threads), values, &v, &tiles);
   if (coverage && values) *coverage = std::move(r.value);
   return v.collect();
 }
 
-void VoteAccumulator::add(const ViewVotes& positive, const ViewVotes& total, int sign) {
+void VoteAccumulator::add(const ViewVotes& positive, const ViewVotes& total, int sign, const ViewVotes* neutral) {
   for (size_t k = 0; k < positive.index.size(); ++k) positive_[positive.index[k]] += sign * positive.weight[k];
   for (size_t k = 0; k < total.index.size(); ++k) total_[total.index[k]] += sign * total.weight[k];
+  if (neutral)
+    for (size_t k = 0; k < neutral->index.size(); ++k) total_[neutral->index[k]] -= sign * neutral->weight[k];
 }
 
 std::vector<bool> VoteAccumulator::select(double tau, double min_total) const {

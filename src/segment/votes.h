@@ -28,15 +28,19 @@ ViewVotes total_votes(const PreparedFrame& frame, int threads = 0);
 // With `values` (one per Gaussian, e.g. the current selection as 0/1) the same pass also
 // renders their coverage into `coverage` (1 channel, the frame's size; 0 outside the
 // tiles the mask touches): inspection and voting share one rasterisation.
+// With `full_coverage` every tile is rasterised, so the coverage is complete (inspection
+// needs the selection outside the mask too) for the cost of one pass.
 ViewVotes masked_votes(const PreparedFrame& frame, const Image& mask, int threads = 0,
-                       const std::vector<float>* values = nullptr, Image* coverage = nullptr);
+                       const std::vector<float>* values = nullptr, Image* coverage = nullptr,
+                       bool full_coverage = false);
 
 class VoteAccumulator {
  public:
   explicit VoteAccumulator(size_t gaussians = 0) : positive_(gaussians, 0), total_(gaussians, 0) {}
   size_t size() const { return total_.size(); }
-  // sign = +1 adds a view, -1 removes it again.
-  void add(const ViewVotes& positive, const ViewVotes& total, int sign = 1);
+  // sign = +1 adds a view, -1 removes it again. `neutral` (optional): weights of the
+  // view's total that count neither way (depth-gated content of the mask).
+  void add(const ViewVotes& positive, const ViewVotes& total, int sign = 1, const ViewVotes* neutral = nullptr);
   // Gaussians whose positive share P/A exceeds tau and whose total weight A is at least
   // min_total (in pixel-weight units).
   std::vector<bool> select(double tau, double min_total) const;

@@ -2,9 +2,14 @@
 
 #include <httplib.h>
 
+#include <memory>
 #include <new>
+#include <regex>
+#include <vector>
 
 #include "core/error.h"
+#include "server/api_json.h"
+#include "server/app_error.h"
 #include "server/app_state.h"
 #include "server/http_error.h"
 #include "server/validation.h"
@@ -26,6 +31,18 @@ void send_error(httplib::Response& res, int status, const std::string& message) 
   send_json(res, {{"error", message}, {"status", status}}, status);
 }
 
+// The status code of an app error: the one place that knows both.
+int status_for(ErrorKind kind) {
+  switch (kind) {
+    case ErrorKind::kInvalid: return 400;
+    case ErrorKind::kNotFound: return 404;
+    case ErrorKind::kConflict: return 409;
+    case ErrorKind::kUnavailable: return 409;
+    case ErrorKind::kBusy: return 503;
+  }
+  return 500;
+}
+
 // Runs a handler, turning every exception into an error response: the server never
 // dies on a request.
 template <typename Fn>
@@ -35,6 +52,8 @@ httplib::Server::Handler guarded(Fn fn) {
       fn(req, res);
     } catch (const HttpError& e) {
       send_error(res, e.status(), e.what());
+    } catch (const AppError& e) {
+      send_error(res, status_for(e.kind()), e.what());
     } catch (const Error& e) {
       send_error(res, 400, e.what());
     } catch (const json::exception& e) {
@@ -96,43 +115,29 @@ RenderRequest parse_render(const httplib::Request& req) {
   return r;
 }
 
-ClickRecord parse_click(const json& body) {
-  ClickRecord c;
-  const bool has_view = body.contains("view") && !body["view"].is_null();
-  const bool has_camera = body.contains("camera") && !body["camera"].is_null();
-  if (has_view == has_camera) bad_request("give either 'view' (a camera index) or 'camera' (a free camera)");
-  if (has_view) {
-    c.camera_index = json_integer(body, "view", 0, 1 << 20);
-  } else {
-    c.free_camera = make_free_camera(free_camera_from_json(body["camera"]));
+// The route table, kept for answering a known path with the wrong method: 405 + Allow.
+struct Routes {
+  httplib::Server& server;
+  std::vector<std::pair<std::string, std::regex>> list;  // method, pattern
+
+  void get(const std::string& pattern, httplib::Server::Handler h) {
+    list.emplace_back("GET", std::regex(pattern));
+    server.Get(pattern, std::move(h));
   }
-  c.x = json_number(body, "x", 0, 1);
-  c.y = json_number(body, "y", 0, 1);
-  c.label = json_integer(body, "label", 0, 1, 1);
-  return c;
-}
-
-SegmentSettings parse_settings(const json& body, const SegmentSettings& current) {
-  SegmentSettings s = current;
-  s.tau = json_number(body, "tau", 0, 0.999, current.tau);
-  s.views_spec = json_string(body, "views", 256, current.views_spec);
-  if (s.views_spec.empty()) bad_request("views: empty");
-  const std::string mode = json_string(body, "mode", 16, std::string(segment::mode_name(current.mode)));
-  if (mode != "hybrid" && mode != "epipolar" && mode != "depth") bad_request("mode: expected hybrid, epipolar or depth");
-  s.mode = segment::parse_mode(mode);
-  s.inspection = json_bool(body, "inspection", current.inspection);
-  return s;
-}
-
-SegmentSettings current_settings(const AppState& app) {
-  const json st = app.status()["segmentation"]["settings"];
-  SegmentSettings s;
-  s.tau = st["tau"].get<double>();
-  s.views_spec = st["views"].get<std::string>();
-  s.mode = segment::parse_mode(st["mode"].get<std::string>());
-  s.inspection = st["inspection"].get<bool>();
-  return s;
-}
+  void post(const std::string& pattern, httplib::Server::Handler h) {
+    list.emplace_back("POST", std::regex(pattern));
+    server.Post(pattern, std::move(h));
+  }
+  // "GET, HEAD" / "POST" for a path some route matches; "" for none.
+  std::string allowed(const std::string& path) const {
+    bool get = false, post = false;
+    for (const auto& [method, re] : list)
+      if (std::regex_match(path, re)) (method == "GET" ? get : post) = true;
+    std::string a = get ? "GET, HEAD" : "";
+    if (post) a += std::string(a.empty() ? "" : ", ") + "POST";
+    return a;
+  }
+};
 
 void serve_asset(const std::string& path, httplib::Response& res) {
   const WebAsset* a = find_web_asset(path);
@@ -144,35 +149,36 @@ void serve_asset(const std::string& path, httplib::Response& res) {
 }  // namespace
 
 void register_routes(httplib::Server& server, AppState& app) {
-  server.Get("/", guarded([](const httplib::Request&, httplib::Response& res) { serve_asset("/index.html", res); }));
+  auto routes = std::make_shared<Routes>(Routes{server, {}});
+  routes->get("/", guarded([](const httplib::Request&, httplib::Response& res) { serve_asset("/index.html", res); }));
   for (const WebAsset& a : web_assets()) {
     const std::string path = a.path;
-    server.Get(path, guarded([path](const httplib::Request&, httplib::Response& res) { serve_asset(path, res); }));
+    routes->get(path, guarded([path](const httplib::Request&, httplib::Response& res) { serve_asset(path, res); }));
   }
 
-  server.Get("/api/scene", guarded([&app](const httplib::Request&, httplib::Response& res) {
-    send_json(res, app.scene_info());
+  routes->get("/api/scene", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, to_json(app.scene_info()));
   }));
-  server.Get("/api/status", guarded([&app](const httplib::Request&, httplib::Response& res) {
-    send_json(res, app.status());
+  routes->get("/api/status", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, to_json(app.status()));
   }));
-  server.Get("/api/render", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->get("/api/render", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const RenderRequest r = parse_render(req);
     const std::vector<uint8_t> bytes = app.render(r);
     res.set_header("Cache-Control", "no-store");
     res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), r.png ? "image/png" : "image/jpeg");
   }));
-  server.Get("/api/thumb", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->get("/api/thumb", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     check_params(req, {"index", "v"});
     if (!req.has_param("index")) bad_request("missing parameter 'index'");
     const std::vector<uint8_t> bytes = app.thumbnail(parse_integer(param(req, "index"), "index", 0, 1 << 20));
     res.set_header("Cache-Control", "no-store");
     res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), "image/jpeg");
   }));
-  server.Get("/api/selection/bounds", guarded([&app](const httplib::Request&, httplib::Response& res) {
-    send_json(res, app.selection_bounds());
+  routes->get("/api/selection/bounds", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, to_json(app.selection_bounds()));
   }));
-  server.Get("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->get("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     check_params(req, {"format"});
     const std::string f = req.has_param("format") ? param(req, "format") : "ply";
     if (f != "ply" && f != "splat" && f != "spz") bad_request("format: expected ply, splat or spz");
@@ -181,50 +187,62 @@ void register_routes(httplib::Server& server, AppState& app) {
     res.set_header("Cache-Control", "no-store");
     res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), "application/octet-stream");
   }));
-  server.Get(R"(/api/jobs/(\d{1,18}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->get(R"(/api/jobs/(\d{1,18}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const JobStatus s = app.jobs().find(std::stoull(req.matches[1].str()));
     if (s.state.empty()) throw HttpError(404, "no job " + req.matches[1].str());
-    send_json(res, {{"id", s.id}, {"name", s.name}, {"state", s.state}, {"done", s.done}, {"total", s.total},
-                    {"message", s.message}, {"error", s.error}, {"seconds", s.seconds}});
+    send_json(res, to_json(s));
   }));
 
-  server.Post("/api/click", guarded([&app](const httplib::Request& req, httplib::Response& res) {
-    const uint64_t id = app.click(parse_click(parse_body(req.body)));
+  routes->post("/api/click", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    const uint64_t id = app.click(click_from_json(parse_body(req.body)));
     send_json(res, {{"job", id}}, 202);
   }));
-  server.Post("/api/click/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+  routes->post("/api/click/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
     send_json(res, {{"job", app.undo_click()}}, 202);
   }));
-  server.Post("/api/click/redo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+  routes->post("/api/click/redo", guarded([&app](const httplib::Request&, httplib::Response& res) {
     send_json(res, {{"job", app.redo_click()}}, 202);
   }));
-  server.Post("/api/settings", guarded([&app](const httplib::Request& req, httplib::Response& res) {
-    const json body = parse_body(req.body);
-    send_json(res, {{"job", app.set_settings(parse_settings(body, current_settings(app)))}}, 202);
+  routes->post("/api/settings", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    send_json(res, {{"job", app.set_settings(settings_from_json(parse_body(req.body)))}}, 202);
   }));
-  server.Post(R"(/api/select/([a-z]{1,16}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->post(R"(/api/select/([a-z]{1,16}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const json body = req.body.empty() ? json::object() : parse_body(req.body);
-    send_json(res, app.select(req.matches[1].str(), body));
+    send_json(res, to_json(app.select(select_from_json(req.matches[1].str(), body))));
   }));
-  server.Post("/api/edit/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
-    send_json(res, app.undo_edit());
+  routes->post("/api/edit/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, to_json(app.undo_edit()));
   }));
-  server.Post("/api/edit/redo", guarded([&app](const httplib::Request&, httplib::Response& res) {
-    send_json(res, app.redo_edit());
+  routes->post("/api/edit/redo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, to_json(app.redo_edit()));
   }));
-  server.Post(R"(/api/edit/([a-z]{1,16}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->post(R"(/api/edit/([a-z]{1,16}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const json body = req.body.empty() ? json::object() : parse_body(req.body);
-    send_json(res, app.edit(req.matches[1].str(), body));
+    send_json(res, to_json(app.edit(edit_from_json(req.matches[1].str(), body))));
   }));
-  server.Post("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+  routes->post("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const json body = parse_body(req.body);
-    send_json(res, app.export_to(json_string(body, "path", 200)));
+    json_only_keys(body, {"path"});
+    send_json(res, to_json(app.export_to(json_string(body, "path", 200))));
   }));
 
-  server.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
+  server.set_error_handler([routes](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;
-    const std::string what = res.status == 404 ? "no such endpoint: " + req.method + " " + req.path.substr(0, 100)
-                                               : "request failed";
+    if (res.status == 404) {
+      const std::string allow = routes->allowed(req.path);
+      if (!allow.empty()) {
+        res.set_header("Allow", allow);
+        send_error(res, 405, req.method.substr(0, 16) + " is not allowed on " + req.path.substr(0, 100) +
+                                 " (allowed: " + allow + ")");
+        return;
+      }
+      send_error(res, 404, "no such endpoint: " + req.method.substr(0, 16) + " " + req.path.substr(0, 100));
+      return;
+    }
+    std::string what = "request failed";
+    if (res.status == 400) what = "malformed request (request line, headers or body could not be read)";
+    else if (res.status == 413) what = "request body too large";
+    else if (res.status == 414) what = "request URI too long";
     send_error(res, res.status, what);
   });
 }

@@ -1,5 +1,6 @@
 // The HTTP API of the web app: routes from URLs to AppState, with every input validated
-// (validation.h) and every failure answered as {"error": message} with a 4xx/5xx status.
+// (validation.h, api_json.h) and every failure answered as {"error": message} with a
+// 4xx/5xx status (AppError kinds map to codes here).
 //
 //   GET  /, /index.html, /js/*.js, /style.css    the page (embedded)
 //   GET  /api/scene                              cameras, bounds, sizes
@@ -13,7 +14,8 @@
 //   POST /api/click/undo, /api/click/redo        (jobs)
 //   POST /api/settings {tau, views, mode, inspection}   (a job)
 //   POST /api/select/{box,sphere,invert,clear,all}
-//   POST /api/edit/{remove,colorize,scale,copy,move,combine}, /api/edit/undo, /api/edit/redo
+//   POST /api/edit/{remove,extract,colorize,scale,copy,transform,combine} (edit/edit_op.h;
+//        `move` = transform), /api/edit/undo, /api/edit/redo; combine reads inside --data-dir
 //   POST /api/export {path}                      writes under the output directory
 //   GET  /api/jobs/{id}                          one job's state
 #pragma once

@@ -2,8 +2,6 @@
 // image size, checked and turned into a Camera.
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include "core/camera.h"
 
 namespace isegman::server {
@@ -14,10 +12,8 @@ struct FreeCameraSpec {
   int width = 640, height = 480;
 };
 
-// Throws HttpError(400) on a degenerate spec (eye == target, up along the view, fov or
+// Throws AppError(kInvalid) on a degenerate spec (eye == target, up along the view, fov or
 // size out of range).
 Camera make_free_camera(const FreeCameraSpec& spec);
-// From {"eye":[..], "target":[..], "up":[..], "fov": deg, "width": w, "height": h}.
-FreeCameraSpec free_camera_from_json(const nlohmann::json& j);
 
 }  // namespace isegman::server

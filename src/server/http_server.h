@@ -1,5 +1,10 @@
 // The app's HTTP server: cpp-httplib listening on one address (loopback by default) in a
 // thread of its own, serving the API of api.h. stop() (or destruction) shuts it down.
+//
+// Each connection carries one request, read under a total deadline (a client that
+// trickles its headers is cut off, not waited for per byte), with the header block and
+// body bounded and checked before the body is read (request_head.h). Requests whose
+// Host/Origin is not this server are refused (origin_policy.h).
 #pragma once
 
 #include <memory>
@@ -10,9 +15,16 @@ namespace isegman::server {
 
 class AppState;
 
+struct HttpLimits {
+  double request_seconds = 10;     // to receive a whole request (headers + body)
+  size_t max_header_bytes = 16384;
+  size_t max_body_bytes = 1 << 20;
+  int workers = 32;                // connections served at once
+};
+
 class HttpServer {
  public:
-  explicit HttpServer(AppState& app);
+  explicit HttpServer(AppState& app, const HttpLimits& limits = {});
   ~HttpServer();
   HttpServer(const HttpServer&) = delete;
   HttpServer& operator=(const HttpServer&) = delete;

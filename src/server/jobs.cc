@@ -3,7 +3,7 @@
 #include <chrono>
 #include <exception>
 
-#include "server/http_error.h"
+#include "server/app_error.h"
 
 namespace isegman::server {
 
@@ -30,9 +30,9 @@ void JobRunner::stop() {
 
 uint64_t JobRunner::submit(const std::string& name, Work work) {
   std::lock_guard<std::mutex> lock(mu_);
-  if (stopping_) throw HttpError(503, "the server is shutting down");
+  if (stopping_) throw AppError(ErrorKind::kBusy, "the server is shutting down");
   if (queue_.size() >= max_queued_)
-    throw HttpError(503, "too many queued jobs (" + std::to_string(queue_.size()) + "); wait for the current work");
+    throw AppError(ErrorKind::kBusy, "too many queued jobs (" + std::to_string(queue_.size()) + "); wait for the current work");
   Entry e;
   e.status.id = next_id_++;
   e.status.name = name;

@@ -35,7 +35,7 @@ class JobRunner {
   JobRunner(const JobRunner&) = delete;
   JobRunner& operator=(const JobRunner&) = delete;
 
-  // Queues a job and returns its id. Throws HttpError(503) when the queue is full or
+  // Queues a job and returns its id. Throws AppError(kBusy) when the queue is full or
   // the runner has stopped. A job that throws is recorded as failed with the message.
   uint64_t submit(const std::string& name, Work work);
 

@@ -9,7 +9,7 @@
 namespace isegman::server {
 
 // Returns the absolute path of `relative` under `root` (creating `root` and the parent
-// folders). Throws HttpError(400) naming the problem.
+// folders). Throws AppError(kInvalid) naming the problem.
 std::string resolve_output_path(const std::string& root, const std::string& relative,
                                 const std::vector<std::string>& extensions);
 

@@ -6,7 +6,7 @@
 #include "io/image_io.h"
 #include "segment/overlay.h"
 #include "segment/views.h"
-#include "server/http_error.h"
+#include "server/app_error.h"
 
 namespace isegman::server {
 
@@ -39,7 +39,40 @@ segment::SessionOptions Segmentation::session_options() const {
   return o;
 }
 
+void Segmentation::keep_current() {
+  if (!session_) return;
+  kept_.push_back({std::move(snapshot_), fingerprint_, std::move(session_), std::move(log_), std::move(redo_),
+                   std::move(free_views_)});
+  if (kept_.size() > kKept) kept_.erase(kept_.begin());
+  log_.clear();
+  redo_.clear();
+  free_views_.clear();
+}
+
+std::vector<uint64_t> Segmentation::kept() const {
+  std::vector<uint64_t> out;
+  for (const Kept& k : kept_) out.push_back(k.fingerprint);
+  return out;
+}
+
+bool Segmentation::restore(uint64_t fingerprint) {
+  auto it = std::find_if(kept_.begin(), kept_.end(), [&](const Kept& k) { return k.fingerprint == fingerprint; });
+  if (it == kept_.end()) return false;
+  Kept k = std::move(*it);
+  kept_.erase(it);
+  if (fingerprint_ != fingerprint) keep_current();
+  snapshot_ = std::move(k.snapshot);
+  fingerprint_ = k.fingerprint;
+  session_ = std::move(k.session);
+  log_ = std::move(k.log);
+  redo_ = std::move(k.redo);
+  free_views_ = std::move(k.free_views);
+  return true;
+}
+
 void Segmentation::open(std::shared_ptr<const SceneBundle> snapshot, uint64_t fingerprint, const Progress& progress) {
+  if (session_ && fingerprint_ != fingerprint) keep_current();
+  if (restore(fingerprint)) return;
   session_.reset();
   snapshot_ = std::move(snapshot);
   fingerprint_ = fingerprint;
@@ -79,14 +112,14 @@ int Segmentation::view_for(const ClickRecord& c, const Progress& progress) {
   if (c.camera_index >= 0) {
     for (size_t k = 0; k < views.size(); ++k)
       if (views[k].camera_index == c.camera_index) return int(k);
-    if (c.camera_index >= int(snapshot_->cameras.size())) throw HttpError(400, "view: no camera " + std::to_string(c.camera_index));
+    if (c.camera_index >= int(snapshot_->cameras.size())) throw AppError(ErrorKind::kInvalid, "view: no camera " + std::to_string(c.camera_index));
     if (progress) progress(0, 1, "adding view " + snapshot_->cameras[size_t(c.camera_index)].name);
     const int k = session_->add_view(segment::build_view(snapshot_->gaussians, snapshot_->cameras[size_t(c.camera_index)],
                                                          c.camera_index, *sam_, view_options_));
     free_views_.resize(session_->views().size());
     return k;
   }
-  if (!c.free_camera) throw HttpError(400, "click: neither a view nor a free camera");
+  if (!c.free_camera) throw AppError(ErrorKind::kInvalid, "click: neither a view nor a free camera");
   for (size_t k = 0; k < free_views_.size(); ++k)
     if (free_views_[k] && same_camera(*free_views_[k], *c.free_camera)) return int(k);
   if (progress) progress(0, 1, "computing the free camera's view (render + SAM embedding)");
@@ -97,28 +130,27 @@ int Segmentation::view_for(const ClickRecord& c, const Progress& progress) {
 }
 
 segment::RoundReport Segmentation::click(const ClickRecord& c, const Progress& progress) {
-  if (!session_) throw HttpError(409, "segmentation is not ready");
-  if (!(c.x >= 0 && c.x <= 1 && c.y >= 0 && c.y <= 1)) throw HttpError(400, "click: x and y must be in [0, 1]");
+  if (!session_) throw AppError(ErrorKind::kConflict, "segmentation is not ready");
+  const Camera& full = c.free_camera ? *c.free_camera : snapshot_->cameras.at(size_t(c.camera_index));
+  if (!(c.click.x >= 0 && c.click.x < full.width && c.click.y >= 0 && c.click.y < full.height))
+    throw AppError(ErrorKind::kInvalid, "click: x and y must lie in the camera's image");
   const int k = view_for(c, progress);
+  // The view works at a lower resolution: continuous coordinates just scale.
   const Camera& work = session_->views()[size_t(k)].camera;
-  segment::ViewClick vc;
-  vc.u = std::min(c.x * work.width, work.width - 1e-3);
-  vc.v = std::min(c.y * work.height, work.height - 1e-3);
-  vc.label = c.label;
   if (progress) progress(0, 1, "segmenting: propagation, SAM, inspection, voting");
-  segment::RoundReport r = session_->click(k, vc);
+  segment::RoundReport r = session_->click(k, rescaled(c.click, full.width, full.height, work.width, work.height));
   log_.push_back(c);
   return r;
 }
 
 void Segmentation::undo() {
-  if (!session_ || log_.empty() || !session_->undo()) throw HttpError(409, "no click to undo");
+  if (!session_ || log_.empty() || !session_->undo()) throw AppError(ErrorKind::kConflict, "no click to undo");
   redo_.push_back(log_.back());
   log_.pop_back();
 }
 
 void Segmentation::redo(const Progress& progress) {
-  if (redo_.empty()) throw HttpError(409, "no click to redo");
+  if (redo_.empty()) throw AppError(ErrorKind::kConflict, "no click to redo");
   ClickRecord c = redo_.back();
   redo_.pop_back();
   std::vector<ClickRecord> keep = std::move(redo_);
@@ -127,10 +159,11 @@ void Segmentation::redo(const Progress& progress) {
 }
 
 void Segmentation::reconfigure(const SegmentSettings& s, const Progress& progress) {
-  if (!snapshot_) throw HttpError(409, "segmentation is not ready");
+  if (!snapshot_) throw AppError(ErrorKind::kConflict, "segmentation is not ready");
   // Validate the view spec before dropping anything.
   segment::sample_views(snapshot_->cameras, s.views_spec);
   settings_ = s;
+  kept_.clear();  // made under other settings
   redo_.clear();
   rebuild(progress);
 }
@@ -147,35 +180,34 @@ size_t Segmentation::selected_count() const {
 
 size_t Segmentation::view_count() const { return session_ ? session_->views().size() : 0; }
 
-nlohmann::json Segmentation::views_json() const {
-  nlohmann::json out = nlohmann::json::array();
+std::vector<ViewEvidence> Segmentation::evidence() const {
+  std::vector<ViewEvidence> out;
   if (!session_) return out;
   const auto& views = session_->views();
   const auto& states = session_->view_states();
   for (size_t k = 0; k < views.size(); ++k) {
     const segment::ViewState& st = states[k];
-    int pos = 0, neg = 0;
-    for (const auto& c : st.clicks) (c.label ? pos : neg)++;
-    const char* status = "idle";
+    ViewEvidence e;
+    for (const auto& c : st.clicks) (c.label ? e.positive : e.negative)++;
+    e.status = "idle";
     switch (st.status) {
-      case segment::ViewStatus::Accepted: status = "accepted"; break;
-      case segment::ViewStatus::NoClicks: status = "no-clicks"; break;
-      case segment::ViewStatus::EmptyMask: status = "empty-mask"; break;
-      case segment::ViewStatus::NoOverlap: status = "dropped"; break;
-      case segment::ViewStatus::Skipped: status = "skipped"; break;
+      case segment::ViewStatus::Accepted: e.status = "accepted"; break;
+      case segment::ViewStatus::NoClicks: e.status = "no-clicks"; break;
+      case segment::ViewStatus::EmptyMask: e.status = "empty-mask"; break;
+      case segment::ViewStatus::NoOverlap: e.status = "dropped"; break;
+      case segment::ViewStatus::Skipped: e.status = "skipped"; break;
     }
-    out.push_back({{"index", k},
-                   {"name", views[k].name},
-                   {"camera", views[k].camera_index},
-                   {"status", status},
-                   {"status_text", segment::status_name(st.status)},
-                   {"positive", pos},
-                   {"negative", neg},
-                   {"not_sent", st.not_sent.size()},
-                   {"not_sent_reason", st.not_sent.empty() ? "" : st.not_sent.front()},
-                   {"mask_pixels", st.mask_pixels},
-                   {"sam_score", st.sam_score},
-                   {"overlap", st.overlap}});
+    e.index = k;
+    e.name = views[k].name;
+    e.camera = views[k].camera_index;
+    e.status_text = segment::status_name(st.status);
+    e.not_sent = st.not_sent.size();
+    e.not_sent_reason = st.not_sent.empty() ? "" : st.not_sent.front();
+    e.mask_pixels = st.mask_pixels;
+    e.sam_score = st.sam_score;
+    e.overlap = st.overlap;
+    e.inspected = st.inspected;
+    out.push_back(std::move(e));
   }
   return out;
 }

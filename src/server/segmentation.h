@@ -13,8 +13,7 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "core/click.h"
 #include "core/scene.h"
 #include "models/sam.h"
 #include "segment/session.h"
@@ -28,13 +27,28 @@ struct SegmentSettings {
   bool inspection = true;
 };
 
-// A user click: in a training camera (camera_index >= 0) or a free camera; position in
-// [0, 1] x [0, 1] of the image (x right, y down); label 1 positive, 0 negative.
+// A user click: in a training camera (camera_index >= 0) or a free camera, at continuous
+// pixel coordinates of that camera's full-size image (core/click.h), as the page sends it.
 struct ClickRecord {
   int camera_index = -1;
   std::optional<Camera> free_camera;
-  double x = 0, y = 0;
-  int label = 1;
+  Click click;
+};
+
+// What the evidence strip shows of one segmentation view.
+struct ViewEvidence {
+  size_t index = 0;
+  std::string name;
+  int camera = -1;             // -1: a free camera
+  std::string status;          // accepted, dropped, no-clicks, empty-mask, skipped, idle
+  std::string status_text;
+  int positive = 0, negative = 0;
+  size_t not_sent = 0;
+  std::string not_sent_reason;
+  int mask_pixels = 0;
+  double sam_score = 0;
+  double overlap = 0;
+  bool inspected = false;      // false: accepted without inspection (the clicked view, or inspection off)
 };
 
 class Segmentation {
@@ -45,8 +59,15 @@ class Segmentation {
                segment::ViewOptions view_options, SegmentSettings settings);
 
   // Builds the sampled views of `snapshot` (embeddings from the cache when present)
-  // and opens an empty session; the click log is cleared.
+  // and opens an empty session; the click log is cleared. The segmentation of the scene
+  // it replaces is kept (the last few), so undoing edits back to that scene brings its
+  // clicks back (restore); a kept one for `fingerprint` is reopened as it was.
   void open(std::shared_ptr<const SceneBundle> snapshot, uint64_t fingerprint, const Progress& progress);
+  // Fingerprints of the kept segmentations of earlier scenes.
+  std::vector<uint64_t> kept() const;
+  // Makes the kept segmentation of `fingerprint` current (the current one is kept);
+  // false when there is none.
+  bool restore(uint64_t fingerprint);
   bool is_open() const { return session_ != nullptr; }
   uint64_t fingerprint() const { return fingerprint_; }
 
@@ -54,7 +75,7 @@ class Segmentation {
   segment::RoundReport click(const ClickRecord& click, const Progress& progress);
   bool can_undo() const { return !log_.empty(); }
   bool can_redo() const { return !redo_.empty(); }
-  void undo();                              // throws HttpError(409) when nothing to undo
+  void undo();                              // throws AppError(kConflict) when nothing to undo
   void redo(const Progress& progress);      // re-runs the undone click
   // New settings: rebuilds the views and replays the clicks (embeddings cached).
   void reconfigure(const SegmentSettings& settings, const Progress& progress);
@@ -63,8 +84,8 @@ class Segmentation {
   const std::vector<bool>& selection() const;
   size_t selected_count() const;
   const std::vector<ClickRecord>& clicks() const { return log_; }
-  // Per view: name, camera, clicks, mask size, inspection status.
-  nlohmann::json views_json() const;
+  // Per view: name, camera, clicks, mask size, inspection verdict.
+  std::vector<ViewEvidence> evidence() const;
   // Evidence thumbnail of every view (JPEG, longest side `side`).
   std::vector<std::vector<uint8_t>> thumbnails(int side) const;
   size_t view_count() const;
@@ -74,6 +95,17 @@ class Segmentation {
   void rebuild(const Progress& progress);
   segment::SessionOptions session_options() const;
 
+  struct Kept {
+    std::shared_ptr<const SceneBundle> snapshot;
+    uint64_t fingerprint = 0;
+    std::unique_ptr<segment::Session> session;
+    std::vector<ClickRecord> log, redo;
+    std::vector<std::optional<Camera>> free_views;
+  };
+  static constexpr size_t kKept = 3;  // each holds its views' renders and embeddings
+  void keep_current();
+
+  std::vector<Kept> kept_;  // newest last
   std::shared_ptr<const models::SamModel> sam_;
   segment::SessionOptions base_session_;
   segment::ViewOptions view_options_;

@@ -31,6 +31,10 @@ int serve_scene(const SceneBundle& bundle, const ServeOptions& options) {
     std::printf("isegman serve: %zu Gaussians, %zu cameras; exports go to %s\n", bundle.gaussians.size(),
                 bundle.cameras.size(), options.app.out_dir.c_str());
     std::printf("listening on http://%s:%d/  (Ctrl-C stops)\n", options.host.c_str(), port);
+    if (options.host != "127.0.0.1" && options.host != "localhost" && options.host != "::1")
+      std::printf("warning: --host %s is reachable from other machines: anyone who can connect can view the scene, "
+                  "edit it and export under %s (docs/security.md)\n",
+                  options.host.c_str(), options.app.out_dir.c_str());
     std::fflush(stdout);
     app.start();
     timespec wait{};

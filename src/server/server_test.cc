@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <random>
 
 #include <nlohmann/json.hpp>
@@ -13,8 +14,9 @@
 #include "io/ply.h"
 #include "render/rasterizer.h"
 #include "server/app_state.h"
-#include "server/http_error.h"
+#include "server/app_error.h"
 #include "server/http_server.h"
+#include "server/input_paths.h"
 #include "server/jobs.h"
 #include "server/output_paths.h"
 
@@ -234,11 +236,108 @@ TEST(ServerApi, CombineLoadsASecondScene) {
   std::vector<bool> some(d.bundle.gaussians.size(), false);
   for (size_t i = 0; i < 50; ++i) some[i] = true;
   write_ply(second, d.bundle.gaussians.subset(some));
-  Running s(d.bundle, no_segmentation(dir + "/out"));
+  AppOptions o = no_segmentation(dir + "/out");
+  o.data_dir = dir;
+  Running s(d.bundle, o);
   json body = {{"path", second}, {"translate", {0, 0, 1}}};
   json r = s.post_json("/api/edit/combine", body.dump());
   EXPECT_EQ(r["gaussians"].get<size_t>(), d.bundle.gaussians.size() + 50);
   EXPECT_EQ(r["selected"].get<size_t>(), 50u);
+}
+
+// Issue 11 item 9: combine reads only inside the data folder, after resolving symlinks
+// and "..", and its answer for a path outside is the same whether a file exists there.
+TEST(ServerApi, CombineReadsOnlyInsideTheDataFolder) {
+  DemoScene d = small_demo();
+  const std::string dir = temp_dir("datadir");
+  const std::string data = dir + "/data";
+  fs::create_directories(data + "/sub");
+  std::vector<bool> some(d.bundle.gaussians.size(), false);
+  for (size_t i = 0; i < 20; ++i) some[i] = true;
+  const GaussianScene part = d.bundle.gaussians.subset(some);
+  write_ply(data + "/sub/inside.ply", part);
+  write_ply(dir + "/secret.ply", part);
+  fs::create_symlink(dir + "/secret.ply", data + "/link.ply");
+  fs::create_directory_symlink(dir, data + "/up");
+  AppOptions o = no_segmentation(dir + "/out");
+  o.data_dir = data;
+  Running s(d.bundle, o);
+  EXPECT_EQ(s.get_json("/api/scene")["data_dir"].get<std::string>(), fs::weakly_canonical(data).string());
+
+  auto combine = [&](const std::string& path, int expect) {
+    return s.post_json("/api/edit/combine", json({{"path", path}}).dump(), expect);
+  };
+  // Outside, existing or not, by every spelling: one answer that does not say which.
+  const std::string existing = dir + "/secret.ply", missing = dir + "/no-such.ply";
+  const std::string message = combine(existing, 400)["error"];
+  EXPECT_EQ(message.find("secret"), std::string::npos) << message;
+  for (const std::string& p : {missing, std::string("../secret.ply"), std::string("../no-such.ply"),
+                               std::string("link.ply"), std::string("up/secret.ply"), std::string("up/no-such.ply"),
+                               std::string("sub/../../secret.ply"), std::string("/etc/passwd"), std::string("/")})
+    EXPECT_EQ(combine(p, 400)["error"], message) << p;
+  EXPECT_EQ(s.get_json("/api/status")["edit"]["gaussians"].get<size_t>(), d.bundle.gaussians.size());
+  // Inside: relative or absolute, with harmless "..".
+  EXPECT_EQ(combine("sub/inside.ply", 200)["selected"].get<size_t>(), 20u);
+  EXPECT_EQ(combine(data + "/sub/../sub/inside.ply", 200)["selected"].get<size_t>(), 20u);
+  // Inside but missing: may say so (the folder is the user's).
+  EXPECT_NE(combine("sub/missing.ply", 400)["error"].get<std::string>().find("no such file"), std::string::npos);
+}
+
+TEST(ServerApi, DefaultDataFolderIsTheScenesParent) {
+  SceneBundle b;
+  b.ply_path = "/a/b/scene/point_cloud/iteration_7000/point_cloud.ply";
+  EXPECT_EQ(default_data_dir(b), "/a/b");
+  b.ply_path = "/a/b/model.ply";
+  EXPECT_EQ(default_data_dir(b), "/a/b");
+  b.ply_path = "";
+  EXPECT_EQ(default_data_dir(b), "");
+  EXPECT_THROW(resolve_input_path("", "x.ply"), AppError);
+}
+
+// Issue 13: the same edit through the CLI (`isegman edit`) and through the API gives
+// the same file, bit for bit (one vocabulary, edit/edit_op.h, for both).
+TEST(ServerApi, CliAndApiWriteTheSameBytes) {
+  const std::string bin = std::string(ISEGMAN_BINARY_DIR) + "/isegman";
+  if (!fs::exists(bin)) GTEST_SKIP() << "no isegman binary at " << bin;
+  DemoScene d = small_demo();
+  const std::string dir = temp_dir("cli-api");
+  const std::string scene_path = dir + "/scene.ply", other_path = dir + "/other.ply";
+  write_ply(scene_path, d.bundle.gaussians);
+  std::vector<bool> some(d.bundle.gaussians.size(), false);
+  for (size_t i = 0; i < some.size(); i += 7) some[i] = true;
+  write_ply(other_path, d.bundle.gaussians.subset(some));
+  SceneBundle bundle = d.bundle;
+  bundle.gaussians = read_ply(scene_path);
+  bundle.ply_path = scene_path;
+  Vec3 lo, hi;
+  bundle.gaussians.bounds(lo, hi);
+  const Vec3 mid = (lo + hi) / 2.0;
+  char box[512];  // exact doubles: the box is inclusive
+  std::snprintf(box, sizeof box, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", lo.x, lo.y, lo.z, mid.x, mid.y, hi.z);
+
+  const std::string cli_out = dir + "/cli.ply";
+  const std::string cmd = bin + " edit " + scene_path + " --box " + box +
+                          " colorize --color '#ff8000' --mode balanced copy --translate 0.5,0,0 --rotate-deg 0,0,90"
+                          " scale --factor 1.25 move --scale 0.8 --translate 0,0.1,0 combine --from other.ply"
+                          " --translate 0,0,1 --out " + cli_out + " > " + dir + "/cli.log 2>&1";
+  ASSERT_EQ(std::system(("cd " + dir + " && " + cmd).c_str()), 0) << cmd;
+
+  AppOptions o = no_segmentation(dir + "/out");
+  Running s(bundle, o);  // data folder: the scene's parent, `dir`
+  const json box_body = {{"lo", {lo.x, lo.y, lo.z}}, {"hi", {mid.x, mid.y, hi.z}}};
+  EXPECT_GT(s.post_json("/api/select/box", box_body.dump())["selected"].get<size_t>(), 0u);
+  s.post_json("/api/edit/colorize", R"({"color": "#ff8000", "mode": "balanced"})");
+  s.post_json("/api/edit/copy", R"({"translate": [0.5, 0, 0], "rotate": [0, 0, 90]})");
+  s.post_json("/api/edit/scale", R"({"factor": 1.25})");
+  s.post_json("/api/edit/transform", R"({"scale": 0.8, "translate": [0, 0.1, 0]})");
+  s.post_json("/api/edit/combine", R"({"path": "other.ply", "translate": [0, 0, 1]})");
+  const json w = s.post_json("/api/export", R"({"path": "api.ply"})");
+
+  std::ifstream a(cli_out, std::ios::binary), b(w["path"].get<std::string>(), std::ios::binary);
+  const std::string cli_bytes((std::istreambuf_iterator<char>(a)), {}), api_bytes((std::istreambuf_iterator<char>(b)), {});
+  ASSERT_GT(cli_bytes.size(), 1000u);
+  EXPECT_EQ(cli_bytes.size(), api_bytes.size());
+  EXPECT_TRUE(cli_bytes == api_bytes) << "the CLI and the API wrote different files";
 }
 
 TEST(ServerApi, ExportsOnlyInsideTheOutputDirectory) {
@@ -308,7 +407,7 @@ TEST(Jobs, RunInOrderRecordFailuresAndBoundTheQueue) {
   EXPECT_EQ(jobs.current().message, "waiting");
   const uint64_t a = jobs.submit("a", [&](const JobRunner::Report&) { order.push_back(1); });
   const uint64_t b = jobs.submit("fails", [&](const JobRunner::Report&) { throw std::runtime_error("boom"); });
-  EXPECT_THROW(jobs.submit("c", [](const JobRunner::Report&) {}), HttpError);
+  EXPECT_THROW(jobs.submit("c", [](const JobRunner::Report&) {}), AppError);
   {
     std::lock_guard<std::mutex> lock(mu);
     release = true;
@@ -321,7 +420,7 @@ TEST(Jobs, RunInOrderRecordFailuresAndBoundTheQueue) {
   EXPECT_EQ(jobs.find(b).error, "boom");
   EXPECT_EQ(jobs.find(999).state, "");
   jobs.stop();
-  EXPECT_THROW(jobs.submit("late", [](const JobRunner::Report&) {}), HttpError);
+  EXPECT_THROW(jobs.submit("late", [](const JobRunner::Report&) {}), AppError);
 }
 
 // A full interactive round with SAM: click an object, see it selected, undo/redo the
@@ -368,7 +467,8 @@ TEST(ServerApi, ClickSelectsTheObjectWithSam) {
   ASSERT_EQ(st["segmentation"]["state"], "ready") << st.dump();
   ASSERT_EQ(st["segmentation"]["views"].size(), 4u);
 
-  json click = {{"view", 0}, {"x", (px + 0.5) / cam.width}, {"y", (py + 0.5) / cam.height}, {"label", 1}};
+  // The centre of pixel (px, py), in the camera's pixel coordinates (core/click.h).
+  json click = {{"view", 0}, {"x", px + 0.5}, {"y", py + 0.5}, {"label", 1}};
   json job = s.post_json("/api/click", click.dump(), 202);
   ASSERT_TRUE(s.app->jobs().wait_idle(120));
   json js = s.get_json("/api/jobs/" + std::to_string(job["job"].get<uint64_t>()));
@@ -381,6 +481,8 @@ TEST(ServerApi, ClickSelectsTheObjectWithSam) {
   EXPECT_LT(selected, object_size * 3 / 2) << st.dump();
   EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 1);
   EXPECT_EQ(st["segmentation"]["views"][0]["status"], "accepted");
+  // The clicked view votes first: accepted without an (always 0 %) overlap figure.
+  EXPECT_FALSE(st["segmentation"]["views"][0]["inspected"].get<bool>());
   auto thumb = s.client->Get("/api/thumb?index=0");
   ASSERT_TRUE(thumb);
   EXPECT_EQ(thumb->status, 200);
@@ -403,6 +505,22 @@ TEST(ServerApi, ClickSelectsTheObjectWithSam) {
   // Undoing the removal makes it current again.
   s.post_json("/api/edit/undo", "");
   EXPECT_FALSE(s.get_json("/api/status")["segmentation"]["stale"].get<bool>());
+
+  // Remove again and click on the edited scene (a new click sequence on it); undoing every
+  // edit brings the first scene's segmentation back: not "scene edited", its click undoable.
+  s.post_json("/api/edit/redo", "");
+  s.post_json("/api/click", click.dump(), 202);
+  ASSERT_TRUE(s.app->jobs().wait_idle(120));
+  st = s.get_json("/api/status");
+  EXPECT_FALSE(st["segmentation"]["stale"].get<bool>());
+  EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 1);
+  while (s.get_json("/api/status")["edit"]["can_undo"].get<bool>()) s.post_json("/api/edit/undo", "");
+  ASSERT_TRUE(s.app->jobs().wait_idle(60));
+  st = s.get_json("/api/status");
+  EXPECT_EQ(st["edit"]["gaussians"].get<size_t>(), d.bundle.gaussians.size());
+  EXPECT_FALSE(st["segmentation"]["stale"].get<bool>()) << st["segmentation"].dump();
+  EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 1);
+  EXPECT_TRUE(st["segmentation"]["can_undo"].get<bool>());
   s.post_json("/api/settings", R"({"tau": 1.5})", 400);
   s.post_json("/api/settings", R"({"views": "nope"})", 400);
   s.post_json("/api/click", R"({"view": 0, "x": 0.5})", 400);
@@ -413,9 +531,9 @@ TEST(ServerApi, ClickSelectsTheObjectWithSam) {
 TEST(OutputPaths, StayInsideTheRoot) {
   const std::string root = temp_dir("paths");
   EXPECT_EQ(resolve_output_path(root, "a/b.ply", {".ply"}), (fs::weakly_canonical(root) / "a/b.ply").string());
-  EXPECT_THROW(resolve_output_path(root, "a/../../b.ply", {".ply"}), HttpError);
-  EXPECT_THROW(resolve_output_path(root, "b.splat", {".ply"}), HttpError);
-  EXPECT_THROW(resolve_output_path(root, "a", {".ply"}), HttpError);
+  EXPECT_THROW(resolve_output_path(root, "a/../../b.ply", {".ply"}), AppError);
+  EXPECT_THROW(resolve_output_path(root, "b.splat", {".ply"}), AppError);
+  EXPECT_THROW(resolve_output_path(root, "a", {".ply"}), AppError);
 }
 
 }  // namespace

@@ -72,10 +72,22 @@ edit::Rgb parse_rgb(const std::string& text, const std::string& field) {
 
 json parse_body(const std::string& body, size_t max_bytes) {
   if (body.size() > max_bytes) throw HttpError(413, "request body larger than " + std::to_string(max_bytes) + " bytes");
+  if (body.empty()) bad_request("the request body is empty; this endpoint expects a JSON object");
   json j = json::parse(body, nullptr, false);
   if (j.is_discarded()) bad_request("the request body is not valid JSON");
   if (!j.is_object()) bad_request("the request body must be a JSON object");
   return j;
+}
+
+void json_only_keys(const json& j, std::initializer_list<const char*> allowed) {
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    bool ok = false;
+    for (const char* a : allowed) ok = ok || it.key() == a;
+    if (ok) continue;
+    std::string list;
+    for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+    bad_request("unknown field '" + it.key().substr(0, 40) + "' (expected: " + list + ")");
+  }
 }
 
 double json_number(const json& j, const std::string& key, double lo, double hi, std::optional<double> fallback) {

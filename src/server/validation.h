@@ -3,6 +3,7 @@
 // and inside the given range, integers must be whole, strings bounded in length.
 #pragma once
 
+#include <initializer_list>
 #include <optional>
 #include <string>
 
@@ -26,6 +27,9 @@ edit::Rgb parse_rgb(const std::string& text, const std::string& field);
 
 // A JSON object body (at most `max_bytes`); anything else is a 400.
 json parse_body(const std::string& body, size_t max_bytes = 1 << 16);
+
+// Refuses members other than `allowed` (a misspelt key would otherwise be ignored).
+void json_only_keys(const json& j, std::initializer_list<const char*> allowed);
 
 // Members of a JSON object. Without a fallback the member is required.
 double json_number(const json& j, const std::string& key, double lo, double hi,

@@ -131,13 +131,17 @@ try {
   await page.screenshot({ path: path.join(shots, '02-ready.png') });
 
   // Bad input is answered with a message, not a crash.
-  const bad = await fetch(`${url}api/click`, { method: 'POST', body: '{"view":0,"x":7,"y":0}' });
+  const bad = await fetch(`${url}api/click`, { method: 'POST', body: '{"view":0,"x":-7,"y":0}' });
   check(bad.status === 400 && (await bad.json()).error.includes('x'), 'an out-of-range click is a 400 with a message');
 
   const img = await page.$('#view-img');
   const box = await img.boundingBox();
-  await page.mouse.click(box.x + fx.click[0] * box.width, box.y + fx.click[1] * box.height);
+  // A double click is one click (the page debounces it).
+  await page.mouse.dblclick(box.x + fx.click[0] * box.width, box.y + fx.click[1] * box.height);
   await page.waitForSelector('body[data-clicks="1"][data-busy="false"]', { timeout: 60000 });
+  await page.waitForTimeout(1200);
+  check(await page.getAttribute('body', 'data-clicks') === '1' && await page.getAttribute('body', 'data-busy') === 'false',
+    'a double click sends one click');
   const selected = Number(await page.getAttribute('body', 'data-selected'));
   log(`selected ${selected} Gaussians (object has ${fx.object_gaussians})`);
   check(selected > 0.5 * fx.object_gaussians && selected < 1.6 * fx.object_gaussians,
@@ -145,6 +149,9 @@ try {
   await page.waitForFunction(() => document.querySelectorAll('#strip .thumb').length > 0);
   const accepted = await page.$$eval('#strip .thumb[data-status="accepted"]', (e) => e.length);
   check(accepted >= 2, `evidence strip shows accepted views (${accepted})`);
+  const clickedTip = await page.$eval(`#strip .thumb[data-camera="${fx.camera}"]`, (e) => e.title);
+  check(clickedTip.includes('not inspected') && !clickedTip.includes('overlap with selection 0%'),
+    'the clicked view is shown as not inspected, not as "overlap 0 %"');
   await page.waitForTimeout(500);
   await page.screenshot({ path: path.join(shots, '03-selected.png') });
 
@@ -154,10 +161,16 @@ try {
   log('removed');
   await page.waitForTimeout(700);
   await page.screenshot({ path: path.join(shots, '04-removed.png') });
+  // The evidence is of the scene before the edit: the strip says so.
+  await page.waitForSelector('#strip.stale', { timeout: 5000 });
+  const badges = await page.$$eval('#strip .badge', (e) => e.map((b) => b.textContent));
+  check(badges.length > 0 && badges.every((t) => t === 'before edit'), 'after remove the evidence strip is marked "before edit"');
 
   // Undo and redo the removal.
   await page.keyboard.press('Control+z');
   await page.waitForSelector(`body[data-gaussians="${total}"]`, { timeout: 20000 });
+  await page.waitForSelector('#strip:not(.stale)', { timeout: 5000 });
+  check(await page.textContent('#seg-state') !== 'scene edited', 'after undoing the edit the tag no longer says "scene edited"');
   await page.keyboard.press('Control+Shift+z');
   await page.waitForSelector(`body[data-gaussians="${total - selected}"]`, { timeout: 20000 });
   check(true, 'undo/redo of the removal');

@@ -48,8 +48,12 @@ async function runJob(what, start, kind) {
   }
 }
 
+// A click goes to the server as the one click type (core/click.h): continuous pixel
+// coordinates of the camera's full-size image, pixel (i, j) covering [i, i+1) x [j, j+1).
+// `target.x, target.y` are the fractions of the shown image (any render size).
 async function click(target) {
-  const body = { x: target.x, y: target.y, label: target.label };
+  const cam = target.view !== undefined ? scene.cameras[target.view] : target.camera;
+  const body = { x: target.x * cam.width, y: target.y * cam.height, label: target.label };
   if (target.view !== undefined) body.view = target.view; else body.camera = target.camera;
   const mark = { key: target.key, x: target.x, y: target.y, label: target.label };
   marks.push(mark); redoMarks = [];
@@ -196,6 +200,7 @@ async function main() {
   document.title = `isegman · ${scene.name}`;
   $('scene-name').textContent = scene.name;
   $('out-dir').textContent = `server folder: ${scene.out_dir}`;
+  $('combine-path').title = scene.data_dir ? `read from ${scene.data_dir} (--data-dir)` : 'no data folder (--data-dir)';
   viewer = new Viewer({
     stage: $('stage'), frame: $('frame'), img: $('view-img'), canvas: $('view-marks'), caption: $('view-caption'), scene,
     onClick: click, onError: showError,

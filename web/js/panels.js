@@ -50,7 +50,8 @@ export class Panels {
     $('scale').addEventListener('input', () => { $('scale-out').textContent = `×${scaleFactor().toFixed(2)}`; });
     $('btn-scale').addEventListener('click', () => this.edit('scale', { factor: Number(scaleFactor().toFixed(4)) }));
     $('btn-copy').addEventListener('click', () => this.edit('copy', this.transform()));
-    $('btn-move').addEventListener('click', () => this.edit('move', this.transform()));
+    $('btn-move').addEventListener('click', () => this.edit('transform', this.transform()));
+    $('btn-extract').addEventListener('click', () => this.edit('extract'));
     $('btn-combine').addEventListener('click', () => this.edit('combine', { path: $('combine-path').value.trim(), ...this.transform() }));
     $('btn-undo-edit').addEventListener('click', () => this.undoEdit());
     $('btn-redo-edit').addEventListener('click', () => this.redoEdit());
@@ -91,7 +92,7 @@ export class Panels {
     $('btn-undo-click').disabled = !seg.can_undo;
     $('btn-redo-click').disabled = !seg.can_redo;
     $('btn-settings').disabled = !(segReady || seg.state === 'preparing');
-    for (const id of ['btn-remove', 'btn-colorize', 'btn-scale', 'btn-copy', 'btn-move']) $(id).disabled = !has;
+    for (const id of ['btn-remove', 'btn-extract', 'btn-colorize', 'btn-scale', 'btn-copy', 'btn-move']) $(id).disabled = !has;
     $('btn-invert').disabled = false;
     $('btn-undo-edit').disabled = !ed.can_undo;
     $('btn-redo-edit').disabled = !ed.can_redo;

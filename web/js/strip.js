@@ -30,11 +30,16 @@ export class Strip {
         const name = document.createElement('span'); name.className = 'name';
         const clicks = v.positive || v.negative ? ` · +${v.positive}${v.negative ? ' −' + v.negative : ''}` : '';
         name.textContent = (v.camera >= 0 ? v.name : 'free camera') + clicks;
-        const badge = document.createElement('span'); badge.className = `badge ${v.status}`; badge.textContent = LABELS[v.status] || v.status;
+        const badge = document.createElement('span'); badge.className = `badge ${v.status}`;
+        badge.dataset.label = LABELS[v.status] || v.status;
         meta.append(name, badge);
         card.append(img, meta);
         let tip = `${v.name}: ${v.status_text}`;
-        if (v.mask_pixels) tip += `\nSAM mask ${v.mask_pixels} px, score ${v.sam_score.toFixed(2)}, overlap with selection ${(100 * v.overlap).toFixed(0)}%`;
+        if (v.mask_pixels) {
+          tip += `\nSAM mask ${v.mask_pixels} px, score ${v.sam_score.toFixed(2)}, `;
+          // The clicked view votes first: nothing to inspect it against, so no overlap figure.
+          tip += v.inspected ? `overlap with selection ${(100 * v.overlap).toFixed(0)}%` : 'not inspected (clicked view or inspection off)';
+        }
         if (v.not_sent) tip += `\n${v.not_sent} click(s) not sent: ${v.not_sent_reason}`;
         card.title = tip;
         if (v.camera >= 0) card.addEventListener('click', () => this.onPick(v.camera));
@@ -44,5 +49,10 @@ export class Strip {
       this.version = seg.thumb_version;
     }
     for (const c of this.cards) c.classList.toggle('current', Number(c.dataset.camera) === currentCamera);
+    // After an edit the evidence is of the scene before it: say so instead of showing it
+    // as the current verdict.
+    this.root.classList.toggle('stale', !!seg.stale);
+    this.root.title = seg.stale ? 'evidence of the scene before the last edit; the next click segments the edited scene' : '';
+    for (const b of this.root.querySelectorAll('.badge')) b.textContent = seg.stale ? 'before edit' : b.dataset.label;
   }
 }

@@ -158,6 +158,10 @@ export class Viewer {
       const x = Math.min(Math.max((e.clientX - rect.left) / rect.width, 0), 0.9999);
       const y = Math.min(Math.max((e.clientY - rect.top) / rect.height, 0), 0.9999);
       const label = s.button === 2 || s.shift || e.shiftKey ? 0 : 1;
+      // A double click is one click: drop a repeat at the same spot within 400 ms.
+      const now = performance.now(), last = this.lastClick;
+      this.lastClick = { t: now, x: e.clientX, y: e.clientY, label };
+      if (last && now - last.t < 400 && Math.hypot(e.clientX - last.x, e.clientY - last.y) < 6 && last.label === label) return;
       this.onClick?.({ ...this.shown.target, x, y, label, key: this.shown.key });
     });
     img.addEventListener('wheel', (e) => {

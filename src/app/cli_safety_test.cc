@@ -1,0 +1,178 @@
+// Issue 11 on the command line (items 1-3, 11-13): the `isegman` binary run on a small
+// scene with hostile camera names, outputs aimed at its inputs and out-of-range values.
+// Each case checks the exit status, the message, and that nothing was written or replaced.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "app/demo_scene.h"
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+#include "io/scene_loader.h"
+
+namespace fs = std::filesystem;
+
+namespace isegman::app {
+namespace {
+
+struct CliRun {
+  int status = -1;
+  std::string output;
+  double seconds = 0;
+};
+
+CliRun isegman(const std::string& args) {
+  static int n = 0;
+  const std::string log = (fs::temp_directory_path() / ("isegman-cli-" + std::to_string(::getpid()) + "-" +
+                                                         std::to_string(n++) + ".log")).string();
+  const auto t0 = std::chrono::steady_clock::now();
+  const int raw = std::system((std::string(ISEGMAN_BIN) + " " + args + " >" + log + " 2>&1").c_str());
+  CliRun r;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  std::ifstream in(log);
+  r.output.assign(std::istreambuf_iterator<char>(in), {});
+  fs::remove(log);
+  return r;
+}
+
+std::string slurp(const std::string& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// <root>/scene (trainer layout, 3 cameras named by `names`) and <root>/scene/images/<name>.png.
+std::string make_scene(const std::string& name, const std::vector<std::string>& names) {
+  const fs::path root = fs::temp_directory_path() / ("isegman-cli-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root / "scene" / "images");
+  DemoSceneOptions o;
+  o.cameras = int(names.size());
+  o.width = 64;
+  o.height = 48;
+  o.density = 0.15f;
+  o.sh_degree = 0;
+  DemoScene d = make_demo_scene(o);
+  for (size_t i = 0; i < names.size(); ++i) d.bundle.cameras[i].name = names[i];
+  write_scene_dir((root / "scene").string(), d.bundle.gaussians, d.bundle.cameras);
+  for (const auto& n : names)
+    if (n.find('/') == std::string::npos) write_png((root / "scene" / "images" / (n + ".png")).string(), Image(64, 48, 3, 0.5f));
+  return root.string();
+}
+
+std::string q(const std::string& s) { return "'" + s + "'"; }
+
+TEST(CliSafety, CameraNamesNeverLeaveTheOutputFolder) {
+  const std::string root = make_scene("names", {"../../escaped", "/tmp/isegman-abs-escape", "ok"});
+  const CliRun r = isegman("render " + q(root + "/scene") + " --out " + q(root + "/out/renders"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_FALSE(fs::exists(root + "/escaped.png"));
+  EXPECT_FALSE(fs::exists(root + "/out/escaped.png"));
+  EXPECT_FALSE(fs::exists("/tmp/isegman-abs-escape.png"));
+  EXPECT_TRUE(fs::exists(root + "/out/renders/.._.._escaped.png"));
+  EXPECT_TRUE(fs::exists(root + "/out/renders/_tmp_isegman-abs-escape.png"));
+  EXPECT_TRUE(fs::exists(root + "/out/renders/ok.png"));
+}
+
+TEST(CliSafety, HostileOrDuplicateCameraFilesAreRefused) {
+  const std::string root = make_scene("dup", {"a", "b", "c"});
+  std::string cams = slurp(root + "/scene/cameras.json");
+  // A NUL byte in a name, and then a duplicated name.
+  std::string nul = cams;
+  nul.replace(nul.find("\"b\""), 3, "\"b\\u0000x\"");
+  { std::ofstream(root + "/scene/cameras.json") << nul; }
+  CliRun r = isegman("render " + q(root + "/scene") + " --out " + q(root + "/out"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("control character"), std::string::npos) << r.output;
+  std::string dup = cams;
+  dup.replace(dup.find("\"b\""), 3, "\"a\"");
+  { std::ofstream(root + "/scene/cameras.json") << dup; }
+  r = isegman("render " + q(root + "/scene") + " --out " + q(root + "/out"));
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("two cameras are named 'a'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(root + "/out"));
+}
+
+TEST(CliSafety, RendersNeverReplaceThePhotos) {
+  const std::string root = make_scene("photos", {"a", "b", "c"});
+  const std::string images = root + "/scene/images";
+  const std::string before = slurp(images + "/a.png");
+  fs::create_directory_symlink(images, root + "/imglink");
+  fs::create_directories(root + "/hard");
+  fs::create_hard_link(images + "/b.png", root + "/hard/b.png");
+  for (const std::string& out : {images, root + "/scene/../scene/images", root + "/imglink", root + "/hard"}) {
+    const CliRun r = isegman("render " + q(root + "/scene") + " --compare --out " + q(out));
+    EXPECT_EQ(r.status, 1) << out << "\n" << r.output;
+    EXPECT_NE(r.output.find("refusing to overwrite an input"), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(slurp(images + "/a.png"), before);
+  // segment --photos --overlays <images>: refused before SAM is even loaded.
+  const CliRun s = isegman("segment " + q(root + "/scene") + " --photos --view a --click 3,3 --out " +
+                        q(root + "/sel.isel") + " --overlays " + q(images));
+  EXPECT_EQ(s.status, 1) << s.output;
+  EXPECT_NE(s.output.find("refusing to overwrite an input"), std::string::npos) << s.output;
+  EXPECT_EQ(slurp(images + "/a.png"), before);
+}
+
+TEST(CliSafety, OutputsNeverOverlapInputsOrEachOther) {
+  const std::string root = make_scene("overlap", {"a", "b", "c"});
+  const std::string scene = root + "/scene";
+  const std::string cams = slurp(scene + "/cameras.json");
+  CliRun r = isegman("edit " + q(scene) + " --box -9,-9,-9,9,9,9 colorize --color 1,0,0 --out " + q(root + "/e.ply") +
+                  " --save-selection " + q(scene + "/cameras.json"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_EQ(slurp(scene + "/cameras.json"), cams);
+  EXPECT_FALSE(fs::exists(root + "/e.ply"));  // nothing written: the exit status says so
+  r = isegman("edit " + q(scene) + " --box -9,-9,-9,9,9,9 remove --out " + q(root + "/x.ply") + " --save-selection " +
+              q(root + "/./x.ply"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("two outputs name the same file"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(root + "/x.ply"));
+  r = isegman("segment " + q(scene) + " --view a --click 3,3 --out " + q(root + "/s.isel") + " --ply " +
+              q(root + "/s.isel"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("two outputs name the same file"), std::string::npos) << r.output;
+}
+
+TEST(CliSafety, OutputsAreCheckedBeforeTheWork) {
+  const std::string root = make_scene("early", {"a", "b", "c"});
+  { std::ofstream(root + "/afile") << "x"; }
+  // A folder that cannot be created (a file is in the way): refused at once.
+  CliRun r = isegman("segment " + q(root + "/scene") + " --view a --click 3,3 --out " + q(root + "/afile/sel.isel"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("cannot create the folder"), std::string::npos) << r.output;
+  r = isegman("semantic " + q(root + "/scene") + " --selection " + q(root + "/none.isel") +
+              " --instruction x --editor builtin:grayscale --out " + q(root + "/afile/out.ply"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("cannot create the folder"), std::string::npos) << r.output;
+}
+
+TEST(CliSafety, OutOfRangeValuesAreRefusedByName) {
+  const std::string root = make_scene("values", {"a", "b", "c"});
+  const std::string scene = q(root + "/scene");
+  struct Case {
+    std::string args, expect;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"render " + scene + " --out " + q(root + "/o") + " --threads 1000", "--threads must be between 0"},
+           {"render " + scene + " --out " + q(root + "/o") + " --sh-degree 7", "--sh-degree must be between 0 and 3"},
+           {"render " + scene + " --out " + q(root + "/o") + " --background 2,2,2", "must be in [0, 1]"},
+           {"edit " + scene + " --box -9,-9,-9,9,9,9 scale --factor 1e30 --out " + q(root + "/s.ply"),
+            "--factor 1e30 is outside"},
+           {"edit " + scene + " --box -9,-9,-9,9,9,9 transform --translate 1e30,0,0 --out " + q(root + "/s.ply"),
+            "--translate"}}) {
+    const CliRun r = isegman(c.args);
+    EXPECT_EQ(r.status, 1) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << "\n" << r.output;
+  }
+  EXPECT_FALSE(fs::exists(root + "/o"));
+  EXPECT_FALSE(fs::exists(root + "/s.ply"));
+}
+
+}  // namespace
+}  // namespace isegman::app

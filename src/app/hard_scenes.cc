@@ -1,0 +1,284 @@
+#include "app/hard_scenes.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "app/scene_builder.h"
+#include "core/error.h"
+#include "render/rasterizer.h"
+
+namespace isegman {
+namespace {
+
+Vec3 jitter(SplitMix64& rng, const Vec3& c, double amount) {
+  return {std::clamp(c.x + rng.normal() * amount, 0.0, 1.0), std::clamp(c.y + rng.normal() * amount, 0.0, 1.0),
+          std::clamp(c.z + rng.normal() * amount, 0.0, 1.0)};
+}
+
+// A stable per-cell colour variation (bricks, planks, tiles).
+double cell_noise(int a, int b) {
+  uint32_t h = uint32_t(a * 73856093) ^ uint32_t(b * 19349663);
+  h ^= h >> 13;
+  h *= 0x5bd1e995u;
+  h ^= h >> 15;
+  return (h & 0xffff) / 65535.0 - 0.5;
+}
+
+int add_object(DemoScene& demo, const std::string& name, const Vec3& c, float r) {
+  demo.objects.push_back({name, c, r});
+  return int(demo.objects.size() - 1);
+}
+
+// A vertical cylinder surface (side only, or with a top cap) around (c.x, c.y) from c.z up.
+void cylinder(SceneBuilder& b, const Vec3& c, double r0, double r1, double height, int n, double size,
+              const Vec3& rgb, int label, bool cap, double band_every = 0) {
+  for (int i = 0; i < n; ++i) {
+    if (cap && b.rng.uniform() < 0.15) {
+      double rr = r1 * std::sqrt(b.rng.uniform()), a = b.rng.range(0, 2 * M_PI);
+      b.splat(c + Vec3{rr * std::cos(a), rr * std::sin(a), height}, {0, 0, 1}, size, rgb, label, 0.03);
+      continue;
+    }
+    double a = b.rng.range(0, 2 * M_PI), z = b.rng.range(0, height);
+    double r = r0 + (r1 - r0) * z / height;
+    Vec3 nrm{std::cos(a), std::sin(a), (r0 - r1) / height};
+    nrm = normalized(nrm);
+    Vec3 col = rgb;
+    if (band_every > 0 && std::fmod(z, band_every) < band_every * 0.2) col = rgb * 0.6;
+    b.splat(c + Vec3{r * std::cos(a), r * std::sin(a), z}, nrm, size, col, label, 0.03);
+  }
+}
+
+// An axis-aligned box's five visible faces (no bottom).
+void box(SceneBuilder& b, const Vec3& c, double h, double hz, int n, double size, const Vec3& rgb,
+         const Vec3& line_rgb, int label) {
+  for (int i = 0; i < n; ++i) {
+    int face = int(b.rng.uniform() * 5);
+    double u = b.rng.range(-h, h), v = b.rng.range(-hz, hz);
+    Vec3 p, nrm;
+    switch (face) {
+      case 0: p = {h, u, v}; nrm = {1, 0, 0}; break;
+      case 1: p = {-h, u, v}; nrm = {-1, 0, 0}; break;
+      case 2: p = {u, h, v}; nrm = {0, 1, 0}; break;
+      case 3: p = {u, -h, v}; nrm = {0, -1, 0}; break;
+      default: p = {u, b.rng.range(-h, h), hz}; nrm = {0, 0, 1}; break;
+    }
+    const bool plank = std::fmod(v + hz + 10, 0.14) < 0.02;
+    b.splat(c + p, nrm, size, plank ? line_rgb : rgb, label, 0.03);
+  }
+}
+
+Camera named(Camera cam, int id, const char* prefix) {
+  cam.id = id;
+  char name[32];
+  std::snprintf(name, sizeof name, "%s_%03d", prefix, id);
+  cam.name = name;
+  return cam;
+}
+
+void add_task(EvalScene& s, const std::string& object, const std::string& kind, int label, const Vec3& anchor,
+              int first_camera, double search_px = 12) {
+  EvalTaskSpec t;
+  t.name = s.name + "/" + object;
+  t.kind = kind;
+  t.object = label;
+  if (!find_click(s.scene, label, anchor, first_camera, search_px, t.camera, t.x, t.y))
+    throw Error("evaluation set: no camera shows " + t.name);
+  s.tasks.push_back(t);
+}
+
+// Forward-facing capture of a garden wall: a bush with gaps in front of a brick wall, its
+// pot, a trellis with a vase behind it.
+EvalScene garden(const EvalSetOptions& opt) {
+  EvalScene s;
+  s.name = "garden";
+  DemoScene& demo = s.scene;
+  GaussianScene& g = demo.bundle.gaussians;
+  g.sh_degree = 3;
+  SplitMix64 rng(11);
+  SceneBuilder b{g, demo.labels, rng, 3};
+  const double d = opt.density, sz = 1 / std::sqrt(d);
+  const double wall_y = 2.9;
+  for (int i = 0, n = int(9000 * d); i < n; ++i) {  // brick wall
+    Vec3 p{rng.range(-3.4, 3.4), wall_y, rng.range(0, 3.4)};
+    const int row = int(std::floor(p.z / 0.17));
+    const double shifted = p.x + (row & 1) * 0.2;
+    const int col = int(std::floor(shifted / 0.4));
+    const bool mortar = std::fmod(p.z, 0.17) < 0.022 || std::fmod(shifted + 40, 0.4) < 0.022;
+    Vec3 c = mortar ? Vec3{0.80, 0.78, 0.74} : Vec3{0.62, 0.31, 0.22} + Vec3{1, 0.6, 0.5} * (0.12 * cell_noise(row, col));
+    b.splat(p, {0, -1, 0}, 0.055 * sz, c, -1, 0.02);
+  }
+  for (int i = 0, n = int(7000 * d); i < n; ++i) {  // stone floor
+    Vec3 p{rng.range(-3.4, 3.4), rng.range(-1.6, wall_y), 0};
+    const int a = int(std::floor(p.x / 0.5)), c = int(std::floor(p.y / 0.5));
+    b.splat(p, {0, 0, 1}, 0.06 * sz, Vec3{0.55, 0.55, 0.52} + Vec3{1, 1, 1} * (0.15 * cell_noise(a, c)), -1, 0.02);
+  }
+  // The bush: leaves scattered in an ellipsoid (gaps between them show the wall), a stem.
+  const Vec3 bush_c{-1.0, 1.4, 1.15};
+  const int bush = add_object(demo, "bush", bush_c, 0.7f);
+  for (int leaf = 0, n = int(130 * std::max(1.0, d)); leaf < n; ++leaf) {
+    Vec3 u;
+    do u = {rng.range(-1, 1), rng.range(-1, 1), rng.range(-1, 1)};
+    while (dot(u, u) > 1);
+    const Vec3 c = bush_c + Vec3{u.x * 0.6, u.y * 0.35, u.z * 0.55};
+    const Vec3 dir = normalized(Vec3{rng.normal(), rng.normal() * 0.3, rng.normal()});
+    const Vec3 nrm = normalized(Vec3{rng.normal() * 0.4, -1, rng.normal() * 0.4});
+    const Vec3 col{rng.range(0.12, 0.28), rng.range(0.42, 0.62), rng.range(0.08, 0.18)};
+    for (int k = -2; k <= 2; ++k) b.strip(c + dir * (k * 0.035), nrm, dir, 0.03, 0.022 * (1 - std::abs(k) * 0.2), col, bush, 0.04);
+  }
+  for (int i = 0; i < 60; ++i) {  // stem from the pot to the bush
+    const double t = i / 59.0;
+    const Vec3 p = Vec3{-1.0, 1.4, 0.42} * (1 - t) + (bush_c - Vec3{0, 0, 0.2}) * t;
+    b.strip(p, {0, -1, 0}, {0, 0, 1}, 0.02, 0.012, {0.35, 0.24, 0.12}, bush, 0.02);
+  }
+  const int pot = add_object(demo, "pot", {-1.0, 1.4, 0.21}, 0.3f);
+  cylinder(b, {-1.0, 1.4, 0}, 0.17, 0.23, 0.42, int(2500 * d), 0.035 * sz, {0.72, 0.38, 0.20}, pot, false, 0.21);
+  // The trellis: a lattice of thin bars in front of the wall.
+  const double trellis_y = 2.1;
+  const int trellis = add_object(demo, "trellis", {1.25, trellis_y, 1.25}, 1.5f);
+  for (int k = 0; k < 7; ++k) {
+    const double x = 0.35 + k * 0.3, z = 0.35 + k * 0.3;
+    for (double t = 0.2; t < 2.3; t += 0.03) {
+      for (double off : {-0.012, 0.012}) {
+        b.strip({x + off, trellis_y, t}, {0, -1, 0}, {0, 0, 1}, 0.025, 0.014, {0.86, 0.76, 0.56}, trellis, 0.02);
+        b.strip({t, trellis_y - 0.03, z + off}, {0, -1, 0}, {1, 0, 0}, 0.025, 0.014, {0.86, 0.76, 0.56}, trellis, 0.02);
+      }
+    }
+  }
+  // A vase behind the trellis, between it and the wall.
+  const Vec3 vase_c{1.3, 2.5, 0};
+  const int vase = add_object(demo, "vase", vase_c + Vec3{0, 0, 0.45}, 0.5f);
+  for (int i = 0, n = int(3500 * d); i < n; ++i) {
+    double a = rng.range(0, 2 * M_PI), z = rng.range(0, 0.9);
+    double r = 0.16 + 0.09 * std::sin(M_PI * z / 0.9);
+    Vec3 nrm = normalized(Vec3{std::cos(a), std::sin(a), -0.09 * M_PI / 0.9 * std::cos(M_PI * z / 0.9)});
+    Vec3 col = std::fmod(z, 0.3) < 0.05 ? Vec3{0.92, 0.92, 0.95} : Vec3{0.10, 0.22, 0.72};
+    b.splat(vase_c + Vec3{r * std::cos(a), r * std::sin(a), z}, nrm, 0.03 * sz, col, vase, 0.05);
+  }
+  int id = 0;
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) {
+      const Vec3 eye{-0.9 + 0.6 * col, -2.6, 0.8 + 0.3 * row};
+      const Vec3 target{eye.x * 0.4, 2.0, 1.1};
+      demo.bundle.cameras.push_back(
+          named(Camera::look_at(eye, target, {0, 0, 1}, opt.width, opt.height, 62.0), id++, "front"));
+    }
+  add_task(s, "bush", "gaps in front of a background", bush, bush_c, 5);
+  add_task(s, "pot", "compact object below foliage", pot, {-1.0, 1.4 - 0.2, 0.25}, 9);
+  add_task(s, "trellis", "thin lattice with gaps", trellis, {0.35 + 3 * 0.3, trellis_y, 0.35 + 3 * 0.3}, 6);
+  add_task(s, "vase", "object seen through gaps", vase, vase_c + Vec3{0, -0.24, 0.45}, 10, 20);
+  return s;
+}
+
+// An orbit capture of a courtyard: a crate behind a post, a thin pillar taller than the
+// frame, a tiny die, a lamp of three parts. `coarse` makes it of fewer, larger Gaussians.
+EvalScene courtyard(const EvalSetOptions& opt, bool coarse) {
+  EvalScene s;
+  s.name = coarse ? "courtyard_coarse" : "courtyard";
+  DemoScene& demo = s.scene;
+  GaussianScene& g = demo.bundle.gaussians;
+  g.sh_degree = 3;
+  SplitMix64 rng(coarse ? 23 : 17);
+  SceneBuilder b{g, demo.labels, rng, 3};
+  const double d = opt.density * (coarse ? 0.2 : 1.0), sz = 1 / std::sqrt(opt.density);
+  b.size_scale = coarse ? 2.2 : 1.0;
+  for (int i = 0, n = int(9000 * d); i < n; ++i) {
+    Vec3 p{rng.range(-3, 3), rng.range(-3, 3), 0};
+    bool check = (int(std::floor(p.x * 1.5)) + int(std::floor(p.y * 1.5))) & 1;
+    b.splat(p, {0, 0, 1}, 0.06 * sz, check ? Vec3{0.74, 0.72, 0.66} : Vec3{0.48, 0.47, 0.45}, -1, 0.02);
+  }
+  const Vec3 crate_c{0.9, -0.2, 0.35};
+  const int crate = add_object(demo, "crate", crate_c, 0.6f);
+  box(b, crate_c, 0.35, 0.35, int(6000 * d), 0.04 * sz, {0.66, 0.46, 0.24}, {0.40, 0.26, 0.12}, crate);
+  const int post = add_object(demo, "post", {0.9, -1.25, 0.9}, 1.0f);
+  cylinder(b, {0.9, -1.25, 0}, 0.12, 0.12, 1.8, int(2200 * d), 0.035 * sz, {0.30, 0.32, 0.36}, post, true, 0.3);
+  const int pillar = add_object(demo, "pillar", {-1.7, 1.4, 1.4}, 1.5f);
+  cylinder(b, {-1.7, 1.4, 0}, 0.07, 0.06, 2.9, int(2600 * d), 0.028 * sz, {0.93, 0.92, 0.88}, pillar, true, 0.5);
+  const int die = add_object(demo, "die", {-0.3, -1.2, 0.05}, 0.1f);
+  box(b, {-0.3, -1.2, 0.05}, 0.05, 0.05, int(500 * std::max(d, 0.4)), 0.012 * sz, {0.85, 0.10, 0.10},
+      {0.95, 0.95, 0.95}, die);
+  const Vec3 lamp_c{-0.5, 0.5, 0};
+  const int lamp = add_object(demo, "lamp", lamp_c + Vec3{0, 0, 0.6}, 0.7f);
+  cylinder(b, lamp_c, 0.22, 0.2, 0.06, int(900 * d), 0.03 * sz, {0.18, 0.18, 0.20}, lamp, true);
+  cylinder(b, lamp_c, 0.025, 0.025, 0.9, int(700 * d), 0.015 * sz, {0.75, 0.75, 0.78}, lamp, false);
+  cylinder(b, lamp_c + Vec3{0, 0, 0.85}, 0.30, 0.16, 0.32, int(2200 * d), 0.03 * sz, {0.95, 0.90, 0.70}, lamp, true);
+  const Vec3 target{0, 0.1, 0.45};
+  for (int i = 0; i < 24; ++i) {
+    const bool upper = i % 2 == 1;
+    const double a = 2 * M_PI * i / 24;
+    const double radius = upper ? 4.2 : 5.0, height = upper ? 3.0 : 1.5;
+    const Vec3 eye{radius * std::cos(a), radius * std::sin(a), height};
+    demo.bundle.cameras.push_back(named(Camera::look_at(eye, target, {0, 0, 1}, opt.width, opt.height, 55.0), i, "orbit"));
+  }
+  add_task(s, "crate", "object behind an occluder", crate, crate_c + Vec3{0, -0.35, 0.1}, 18);
+  add_task(s, "pillar", "thin object leaving the frame", pillar, {-1.7 + 0.06, 1.4, 2.3}, 0);
+  add_task(s, "die", "tiny object", die, {-0.3, -1.25, 0.05}, 18);
+  add_task(s, "lamp", "compound object", lamp, lamp_c + Vec3{0, -0.25, 1.0}, 20);
+  return s;
+}
+
+EvalScene orbit_demo(const EvalSetOptions& opt) {
+  EvalScene s;
+  s.name = "orbit";
+  DemoSceneOptions o;
+  o.width = opt.width;
+  o.height = opt.height;
+  o.density = opt.density;
+  s.scene = make_demo_scene(o);
+  for (size_t k = 0; k < s.scene.objects.size(); ++k) {
+    EvalTaskSpec t;
+    t.name = s.name + "/" + s.scene.objects[k].name;
+    t.kind = "clean orbit object";
+    t.object = int(k);
+    if (!demo_click(s.scene, int(k), t.camera, t.x, t.y)) throw Error("evaluation set: no camera shows " + t.name);
+    s.tasks.push_back(t);
+  }
+  return s;
+}
+
+}  // namespace
+
+bool find_click(const DemoScene& demo, int object, const Vec3& anchor, int first_camera, double search_px,
+                int& camera, double& x, double& y) {
+  std::vector<bool> truth(demo.labels.size());
+  for (size_t i = 0; i < truth.size(); ++i) truth[i] = demo.labels[i] == object;
+  const size_t n = demo.bundle.cameras.size();
+  for (size_t k = 0; k < n; ++k) {
+    const size_t c = (size_t(std::max(0, first_camera)) + k) % n;
+    const Camera& cam = demo.bundle.cameras[c];
+    double u, v;
+    if (!cam.project(anchor, u, v)) continue;
+    const double margin = 0.04 * cam.width;
+    if (u < margin || v < margin || u > cam.width - margin || v > cam.height - margin) continue;
+    RenderSettings s;
+    s.color = false;
+    s.depth = false;
+    const Image cover = render_selection(demo.bundle.gaussians, cam, truth, s);
+    double best = 1e30;
+    const int r = int(std::ceil(search_px));
+    for (int py = int(v) - r; py <= int(v) + r; ++py)
+      for (int px = int(u) - r; px <= int(u) + r; ++px) {
+        if (px < 0 || py < 0 || px >= cam.width || py >= cam.height) continue;
+        const double dd = (px + 0.5 - u) * (px + 0.5 - u) + (py + 0.5 - v) * (py + 0.5 - v);
+        if (dd > search_px * search_px || dd >= best || cover.at(px, py) < 0.95f) continue;
+        best = dd;
+        x = px;
+        y = py;
+      }
+    if (best < 1e30) {
+      camera = int(c);
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<EvalScene> make_eval_scenes(const EvalSetOptions& opt) {
+  std::vector<EvalScene> out;
+  out.push_back(garden(opt));
+  out.push_back(courtyard(opt, false));
+  out.push_back(courtyard(opt, true));
+  out.push_back(orbit_demo(opt));
+  return out;
+}
+
+}  // namespace isegman

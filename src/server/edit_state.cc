@@ -1,0 +1,236 @@
+#include "server/edit_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+
+#include "core/selection.h"
+#include "edit/selection_tools.h"
+#include "io/gaussian_file.h"
+#include "io/ply.h"
+#include "server/app_error.h"
+
+namespace isegman::server {
+
+namespace {
+
+// Tints the selection's coverage magenta (it stands out on any object colour) and draws
+// its outline.
+void highlight(Image& color, const Image& coverage) {
+  const float tint[3] = {1.f, 0.2f, 0.8f};
+  const int w = color.width, h = color.height;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float c = std::clamp(coverage.at(x, y), 0.f, 1.f);
+      if (c <= 0.f) continue;
+      const float a = 0.5f * c;
+      for (int k = 0; k < 3; ++k) color.at(x, y, k) = color.at(x, y, k) * (1 - a) + tint[k] * a;
+    }
+  for (int y = 1; y + 1 < h; ++y)
+    for (int x = 1; x + 1 < w; ++x) {
+      if (coverage.at(x, y) <= 0.5f) continue;
+      if (coverage.at(x - 1, y) <= 0.5f || coverage.at(x + 1, y) <= 0.5f || coverage.at(x, y - 1) <= 0.5f ||
+          coverage.at(x, y + 1) <= 0.5f)
+        for (int k = 0; k < 3; ++k) color.at(x, y, k) = tint[k];
+    }
+}
+
+size_t count_selected(const std::vector<bool>& mask) { return size_t(std::count(mask.begin(), mask.end(), true)); }
+
+}  // namespace
+
+EditState::EditState(GaussianScene scene) : session_(std::move(scene)) {
+  fingerprint_ = session_.scene().fingerprint();
+}
+
+GaussianScene EditState::scene_copy() const {
+  std::shared_lock<std::shared_mutex> lock(mu_);
+  return session_.scene();
+}
+
+uint64_t EditState::fingerprint() const {
+  std::shared_lock<std::shared_mutex> lock(mu_);
+  return fingerprint_;
+}
+
+void EditState::bounds(Vec3& lo, Vec3& hi, int& sh_degree) const {
+  std::shared_lock<std::shared_mutex> lock(mu_);
+  session_.scene().bounds(lo, hi);
+  sh_degree = session_.scene().sh_degree;
+}
+
+EditStatus EditState::status() const {
+  std::shared_lock<std::shared_mutex> lock(mu_);
+  EditStatus s;
+  s.gaussians = session_.scene().size();
+  s.selected = count_selected(session_.mask());
+  s.can_undo = session_.history().can_undo();
+  s.can_redo = session_.history().can_redo();
+  s.undo_steps = session_.history().undo_steps();
+  s.redo_steps = session_.history().redo_steps();
+  s.notice = session_.notice();
+  s.revision = revision_.load();
+  s.fingerprint = fingerprint_;
+  return s;
+}
+
+EditResult EditState::result(const std::string& label, const std::vector<std::string>& notes) const {
+  return {label, notes, session_.notice(), session_.scene().size(), count_selected(session_.mask())};
+}
+
+void EditState::changed() {
+  fingerprint_ = session_.scene().fingerprint();
+  ++revision_;
+}
+
+EditResult EditState::select(const SelectRequest& r) {
+  std::unique_lock<std::shared_mutex> lock(mu_);
+  const GaussianScene& scene = session_.scene();
+  const Selection current = session_.selection();
+  const std::string mode = edit::combine_mode_name(r.mode);
+  Selection next;
+  std::string label;
+  switch (r.tool) {
+    case SelectTool::kBox:
+      if (r.lo.x > r.hi.x || r.lo.y > r.hi.y || r.lo.z > r.hi.z) invalid("box: lo must not exceed hi on any axis");
+      next = edit::combine_selections(current, edit::select_box(scene, r.lo, r.hi), r.mode);
+      label = "box selection (" + mode + ")";
+      break;
+    case SelectTool::kSphere:
+      if (!(r.radius > 0)) invalid("radius: must be > 0");
+      next = edit::combine_selections(current, edit::select_sphere(scene, r.center, r.radius), r.mode);
+      label = "sphere selection (" + mode + ")";
+      break;
+    case SelectTool::kInvert:
+      next = edit::invert(current);
+      label = "invert selection";
+      break;
+    case SelectTool::kClear:
+      next = Selection::none_of(scene);
+      label = "clear selection";
+      break;
+    case SelectTool::kAll:
+      next = Selection::all_of(scene);
+      label = "select all";
+      break;
+  }
+  label += ": " + std::to_string(next.count()) + " Gaussians";
+  session_.select(next, label);
+  ++revision_;
+  return result(label, {});
+}
+
+bool EditState::select_from_segmentation(const std::vector<bool>& mask, uint64_t fingerprint,
+                                         const std::string& label) {
+  std::unique_lock<std::shared_mutex> lock(mu_);
+  if (fingerprint != fingerprint_) return false;
+  session_.select(Selection::from_mask(session_.scene(), mask), label);
+  ++revision_;
+  return true;
+}
+
+EditResult EditState::edit(const edit::EditOp& op, const GaussianScene* other) {
+  if (op.kind == edit::EditKind::kCombine && op.direction == edit::CombineDirection::kInto)
+    invalid("combine: the web app inserts another scene into this one (from), not into another");
+  std::unique_lock<std::shared_mutex> lock(mu_);
+  const bool inserts = op.kind == edit::EditKind::kCombine;
+  if (!inserts && session_.selection().empty())
+    conflict("nothing is selected: click an object or use a selection tool first");
+  edit::EditOutcome out;
+  try {
+    out = edit::apply_edit(session_, op, other);
+  } catch (const AppError&) {
+    throw;
+  } catch (const Error& e) {
+    invalid(e.what());
+  }
+  changed();
+  return result(out.label, out.notes);
+}
+
+EditResult EditState::undo() {
+  std::unique_lock<std::shared_mutex> lock(mu_);
+  if (!session_.history().can_undo()) conflict("no edit to undo");
+  const std::string label = session_.undo();
+  changed();
+  return result(label, {});
+}
+
+EditResult EditState::redo() {
+  std::unique_lock<std::shared_mutex> lock(mu_);
+  if (!session_.history().can_redo()) conflict("no edit to redo");
+  const std::string label = session_.redo();
+  changed();
+  return result(label, {});
+}
+
+SelectionBounds EditState::selection_bounds() const {
+  std::shared_lock<std::shared_mutex> lock(mu_);
+  const GaussianScene& g = session_.scene();
+  const auto& mask = session_.mask();
+  SelectionBounds b;
+  b.of_selection = std::find(mask.begin(), mask.end(), true) != mask.end();
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300}, sum{0, 0, 0};
+  size_t n = 0;
+  for (size_t i = 0; i < g.size(); ++i) {
+    if (b.of_selection && !mask[i]) continue;
+    const Vec3 p = g.position(i);
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+    sum += p;
+    ++n;
+  }
+  const Vec3 c = sum / double(std::max<size_t>(n, 1));
+  double r = 0;
+  for (size_t i = 0; i < g.size(); ++i) {
+    if (b.of_selection && !mask[i]) continue;
+    const Vec3 d = g.position(i) - c;
+    r = std::max(r, std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z));
+  }
+  b.count = n;
+  b.lo = lo;
+  b.hi = hi;
+  b.center = c;
+  b.radius = r;
+  return b;
+}
+
+Image EditState::render(const Camera& camera, const RenderSettings& settings, bool with_highlight) const {
+  RenderOutput out;
+  {
+    std::shared_lock<std::shared_mutex> lock(mu_);
+    const auto& mask = session_.mask();
+    std::vector<float> values;
+    if (with_highlight && std::find(mask.begin(), mask.end(), true) != mask.end()) {
+      values.resize(mask.size());
+      for (size_t i = 0; i < mask.size(); ++i) values[i] = mask[i] ? 1.f : 0.f;
+    }
+    out = isegman::render(session_.scene(), camera, settings, values.empty() ? nullptr : &values);
+  }
+  if (!out.value.empty()) highlight(out.color, out.value);
+  return std::move(out.color);
+}
+
+std::vector<uint8_t> EditState::serialize(edit::SceneFormat format) const {
+  std::shared_lock<std::shared_mutex> lock(mu_);
+  try {
+    return serialize_gaussians(session_.scene(), format);
+  } catch (const Error& e) {
+    conflict(e.what());
+  }
+}
+
+size_t EditState::write(const std::string& path, const std::vector<std::string>& inputs,
+                        std::vector<std::string>* notes) const {
+  std::shared_lock<std::shared_mutex> lock(mu_);
+  try {
+    edit::write_scene_file(path, session_.scene(), inputs, notes);
+  } catch (const Error& e) {
+    invalid(e.what());
+  }
+  return session_.scene().size();
+}
+
+}  // namespace isegman::server

@@ -1,0 +1,94 @@
+// The scene being edited: an EditSession (scene + selection + undo history) behind a
+// reader/writer lock, with the fingerprint the segmentation compares against and a
+// revision the page re-renders on. Typed in, typed out: no JSON, no HTTP.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <shared_mutex>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "core/math.h"
+#include "core/scene.h"
+#include "edit/edit_op.h"
+#include "edit/history.h"
+#include "edit/scene_format.h"
+#include "render/rasterizer.h"
+
+namespace isegman::server {
+
+enum class SelectTool { kBox, kSphere, kInvert, kClear, kAll };
+
+struct SelectRequest {
+  SelectTool tool = SelectTool::kClear;
+  Vec3 lo, hi;           // box
+  Vec3 center;           // sphere
+  double radius = 0;     // sphere
+  edit::CombineMode mode = edit::CombineMode::kReplace;  // box, sphere
+};
+
+// What an edit, a selection change or an undo/redo did.
+struct EditResult {
+  std::string label;
+  std::vector<std::string> notes;
+  std::string notice;    // history cap messages
+  size_t gaussians = 0;
+  size_t selected = 0;
+};
+
+struct EditStatus {
+  size_t gaussians = 0, selected = 0;
+  bool can_undo = false, can_redo = false;
+  size_t undo_steps = 0, redo_steps = 0;
+  std::string notice;
+  uint64_t revision = 0;
+  uint64_t fingerprint = 0;
+};
+
+struct SelectionBounds {
+  bool of_selection = false;  // false: of the whole scene (nothing selected)
+  size_t count = 0;
+  Vec3 lo, hi, center;
+  double radius = 0;
+};
+
+class EditState {
+ public:
+  explicit EditState(GaussianScene scene);
+
+  GaussianScene scene_copy() const;
+  uint64_t fingerprint() const;
+  uint64_t revision() const { return revision_.load(); }
+  void bounds(Vec3& lo, Vec3& hi, int& sh_degree) const;
+  EditStatus status() const;
+
+  EditResult select(const SelectRequest& request);
+  // Makes a click's selection current when the scene still has `fingerprint`; false
+  // (nothing changed) when the scene was edited meanwhile.
+  bool select_from_segmentation(const std::vector<bool>& mask, uint64_t fingerprint, const std::string& label);
+  // `other`: the loaded scene of a combine. Throws AppError(kConflict) when nothing is
+  // selected, AppError(kInvalid) for parameters the toolbox refuses.
+  EditResult edit(const edit::EditOp& op, const GaussianScene* other = nullptr);
+  EditResult undo();
+  EditResult redo();
+  SelectionBounds selection_bounds() const;
+
+  // Renders the edited scene, the selection tinted when `highlight`.
+  Image render(const Camera& camera, const RenderSettings& settings, bool highlight) const;
+  std::vector<uint8_t> serialize(edit::SceneFormat format) const;
+  // Writes the scene to `path` (never one of `inputs`); returns the Gaussian count.
+  size_t write(const std::string& path, const std::vector<std::string>& inputs, std::vector<std::string>* notes) const;
+
+ private:
+  EditResult result(const std::string& label, const std::vector<std::string>& notes) const;
+  void changed();  // lock held exclusively
+
+  mutable std::shared_mutex mu_;
+  edit::EditSession session_;
+  uint64_t fingerprint_ = 0;
+  std::atomic<uint64_t> revision_{1};  // scene or selection changed: re-render
+};
+
+}  // namespace isegman::server

@@ -1,0 +1,270 @@
+#include "server/segmentation_jobs.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "core/error.h"
+#include "models/sam.h"
+#include "server/app_error.h"
+
+namespace fs = std::filesystem;
+
+namespace isegman::server {
+
+namespace {
+
+constexpr int kThumbSide = 240;
+const char* kReady = "click an object: left = add, right or shift = remove";
+const char* kEditedSince = "the scene was edited after these clicks; undo the edit or click again";
+
+}  // namespace
+
+SegmentationJobs::SegmentationJobs(const SceneBundle& bundle, SegmentationOptions options, EditState& scene,
+                                   JobRunner& jobs, ActivityLog& log)
+    : bundle_(bundle), options_(std::move(options)), scene_(scene), jobs_(jobs), log_(log) {
+  published_.state = "starting";
+  published_.settings = options_.settings;
+  if (!options_.enabled) {
+    published_.state = "off";
+    published_.message = "segmentation is disabled (--no-segmentation); selection tools and edits work";
+  }
+}
+
+void SegmentationJobs::start() {
+  if (!options_.enabled) return;
+  jobs_.submit("prepare segmentation", [this](const JobRunner::Report& report) { prepare_job(report); });
+}
+
+void SegmentationJobs::set_state(const std::string& state, const std::string& message) {
+  std::lock_guard<std::mutex> lock(status_mu_);
+  published_.state = state;
+  published_.message = message;
+  log_.bump();
+}
+
+std::shared_ptr<const SceneBundle> SegmentationJobs::snapshot() const {
+  auto b = std::make_shared<SceneBundle>(bundle_);
+  b->gaussians = scene_.scene_copy();
+  return b;
+}
+
+void SegmentationJobs::prepare_job(const JobRunner::Report& report) {
+  std::lock_guard<std::mutex> seg_lock(seg_mu_);
+  try {
+    const std::string dir = options_.sam_dir.empty() ? models::default_sam_dir() : options_.sam_dir;
+    const fs::path enc = fs::path(dir) / "encoder.onnx", dec = fs::path(dir) / "sam.onnx";
+    if (!fs::exists(enc) || !fs::exists(dec)) {
+      set_state("off", "SAM model files missing in " + dir +
+                           " (run scripts/setup.sh or pass --sam DIR); selection tools and edits still work");
+      log_.note("segmentation unavailable: SAM model files missing in " + dir, "warn");
+      return;
+    }
+    set_state("preparing", "loading SAM");
+    report(0, 0, "loading SAM from " + dir);
+    if (!options_.views.cache_dir.empty()) {
+      std::error_code ec;
+      fs::create_directories(options_.views.cache_dir, ec);
+    }
+    sam_ = std::make_shared<const models::SamModel>(enc.string(), dec.string(), options_.threads);
+    seg_ = std::make_unique<Segmentation>(sam_, options_.session, options_.views, options_.settings);
+    std::shared_ptr<const SceneBundle> snap = snapshot();
+    set_state("preparing", "rendering views and computing SAM embeddings");
+    seg_->open(snap, snap->gaussians.fingerprint(), [&](int done, int total, const std::string& line) {
+      report(done, total, line);
+      std::lock_guard<std::mutex> lock(status_mu_);
+      published_.message = "preparing views: " + line;
+      log_.bump();
+    });
+    set_state("ready", kReady);
+    publish(false);
+    log_.note("segmentation ready: " + std::to_string(seg_->view_count()) + " views");
+  } catch (const std::exception& e) {
+    set_state("error", std::string("segmentation could not start: ") + e.what());
+    log_.note(std::string("segmentation could not start: ") + e.what(), "error");
+    throw;
+  }
+}
+
+void SegmentationJobs::ensure_current(const Progress& progress) {
+  if (!seg_ || !seg_->is_open()) throw AppError(ErrorKind::kUnavailable, "segmentation is not ready");
+  if (seg_->fingerprint() == scene_.fingerprint()) return;
+  log_.note("the scene was edited: segmenting the edited scene (views re-rendered, clicks start over)");
+  set_state("preparing", "re-rendering the views of the edited scene");
+  std::shared_ptr<const SceneBundle> snap = snapshot();
+  seg_->open(snap, snap->gaussians.fingerprint(), progress);
+  set_state("ready", kReady);
+}
+
+bool SegmentationJobs::publish(bool apply_selection) {
+  if (!seg_) return true;
+  const bool applied =
+      !apply_selection || !seg_->is_open() ||
+      scene_.select_from_segmentation(seg_->selection(), seg_->fingerprint(),
+                                      "click selection (" + std::to_string(seg_->selected_count()) + " Gaussians)");
+  std::vector<std::vector<uint8_t>> thumbs = seg_->thumbnails(kThumbSide);
+  std::vector<ViewEvidence> views = seg_->evidence();
+  std::lock_guard<std::mutex> lock(status_mu_);
+  thumbs_ = std::move(thumbs);
+  published_.views = std::move(views);
+  seg_fingerprint_ = seg_->fingerprint();
+  published_.clicks = seg_->clicks().size();
+  published_.selected = seg_->selected_count();
+  published_.can_undo = seg_->can_undo();
+  published_.can_redo = seg_->can_redo();
+  published_.settings = seg_->settings();
+  kept_ = seg_->kept();
+  ++published_.thumb_version;
+  log_.bump();
+  return applied;
+}
+
+void SegmentationJobs::require_available() const {
+  std::lock_guard<std::mutex> lock(status_mu_);
+  if (published_.state == "off" || published_.state == "error")
+    throw AppError(ErrorKind::kUnavailable, "segmentation unavailable: " + published_.message);
+}
+
+uint64_t SegmentationJobs::submit(const std::string& name, std::function<void(const Progress&)> work) {
+  require_available();
+  return jobs_.submit(name, [this, work, name](const JobRunner::Report& report) {
+    std::lock_guard<std::mutex> seg_lock(seg_mu_);
+    try {
+      work(report);
+    } catch (const std::exception& e) {
+      log_.note(name + " failed: " + e.what(), "error");
+      // Whatever happened, show the segmentation as it now is.
+      if (seg_ && seg_->is_open()) publish(false);
+      {
+        std::lock_guard<std::mutex> lock(status_mu_);
+        if (published_.state == "preparing") published_.state = seg_ && seg_->is_open() ? "ready" : "error";
+      }
+      throw;
+    }
+  });
+}
+
+uint64_t SegmentationJobs::click(const ClickRecord& c) {
+  if (c.camera_index >= int(bundle_.cameras.size()) || (c.camera_index < 0 && !c.free_camera))
+    invalid("view: no camera " + std::to_string(c.camera_index));
+  const Camera& cam = c.free_camera ? *c.free_camera : bundle_.cameras[size_t(c.camera_index)];
+  if (!(c.click.x >= 0 && c.click.x < cam.width && c.click.y >= 0 && c.click.y < cam.height))
+    invalid("x, y: must lie in the camera's image, [0, " + std::to_string(cam.width) + ") x [0, " +
+            std::to_string(cam.height) + ") pixels");
+  if (c.click.label != 0 && c.click.label != 1) invalid("label: must be 1 (positive) or 0 (negative)");
+  return submit("click", [this, c](const Progress& progress) {
+    ensure_current(progress);
+    const auto t0 = std::chrono::steady_clock::now();
+    segment::RoundReport r = seg_->click(c, progress);
+    // An edit landed while this click was segmented: its selection refers to the old
+    // scene. Say so (the page shows the job's error) rather than drop it silently.
+    if (!publish(true)) conflict("the scene was edited while this click was being segmented: click again");
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    char line[256];
+    std::snprintf(line, sizeof line, "%s click: %zu Gaussians selected; %d views segmented, %d accepted, %d dropped (%.1f s)",
+                  c.click.label ? "positive" : "negative", r.selected, r.views_segmented, r.accepted, r.dropped, ms / 1000);
+    log_.note(line);
+  });
+}
+
+uint64_t SegmentationJobs::undo_click() {
+  const uint64_t edit_fp = scene_.fingerprint();
+  {
+    std::lock_guard<std::mutex> lock(status_mu_);
+    if (!published_.can_undo) conflict("no click to undo");
+    if (seg_fingerprint_ != edit_fp) conflict(kEditedSince);
+  }
+  return submit("undo click", [this](const Progress&) {
+    if (!seg_ || seg_->fingerprint() != scene_.fingerprint()) conflict(kEditedSince);
+    seg_->undo();
+    if (!publish(true)) conflict(kEditedSince);
+    log_.note("undid a click: " + std::to_string(seg_->selected_count()) + " Gaussians selected");
+  });
+}
+
+uint64_t SegmentationJobs::redo_click() {
+  const uint64_t edit_fp = scene_.fingerprint();
+  {
+    std::lock_guard<std::mutex> lock(status_mu_);
+    if (!published_.can_redo) conflict("no click to redo");
+    if (seg_fingerprint_ != edit_fp) conflict(kEditedSince);
+  }
+  return submit("redo click", [this](const Progress& progress) {
+    if (!seg_ || seg_->fingerprint() != scene_.fingerprint()) conflict(kEditedSince);
+    seg_->redo(progress);
+    if (!publish(true)) conflict(kEditedSince);
+    log_.note("redid a click: " + std::to_string(seg_->selected_count()) + " Gaussians selected");
+  });
+}
+
+uint64_t SegmentationJobs::set_settings(const SettingsRequest& request) {
+  SegmentSettings s;
+  {
+    std::lock_guard<std::mutex> lock(status_mu_);
+    s = published_.settings;
+  }
+  if (request.tau) s.tau = *request.tau;
+  if (request.views) s.views_spec = *request.views;
+  if (request.mode) s.mode = *request.mode;
+  if (request.inspection) s.inspection = *request.inspection;
+  if (!(s.tau >= 0 && s.tau < 1)) invalid("tau: must be in [0, 1)");
+  if (s.views_spec.empty()) invalid("views: empty");
+  try {
+    segment::sample_views(bundle_.cameras, s.views_spec);
+  } catch (const Error& e) {
+    invalid(std::string("views: ") + e.what());
+  }
+  return submit("apply settings", [this, s](const Progress& progress) {
+    ensure_current(progress);
+    set_state("preparing", "applying settings: rebuilding views and replaying clicks");
+    seg_->reconfigure(s, progress);
+    set_state("ready", kReady);
+    publish(seg_->can_undo());
+    char line[200];
+    std::snprintf(line, sizeof line, "settings: tau %.2f, views %s (%zu), %s propagation, inspection %s", s.tau,
+                  s.views_spec.c_str(), seg_->view_count(), segment::mode_name(s.mode), s.inspection ? "on" : "off");
+    log_.note(line);
+  });
+}
+
+void SegmentationJobs::scene_changed() {
+  const uint64_t fp = scene_.fingerprint();
+  {
+    std::lock_guard<std::mutex> lock(status_mu_);
+    if (published_.state != "ready" || std::find(kept_.begin(), kept_.end(), fp) == kept_.end()) return;
+  }
+  try {
+    jobs_.submit("restore segmentation", [this](const JobRunner::Report&) {
+      std::lock_guard<std::mutex> seg_lock(seg_mu_);
+      const uint64_t now = scene_.fingerprint();
+      if (!seg_ || seg_->fingerprint() == now || !seg_->restore(now)) return;
+      publish(false);
+      log_.note("the scene is back to an earlier state: its " + std::to_string(seg_->clicks().size()) +
+                " click(s) are current again");
+    });
+  } catch (const AppError&) {
+    // Queue full or stopping: the next click re-segments instead.
+  }
+}
+
+SegmentationStatus SegmentationJobs::status(uint64_t edit_fingerprint) const {
+  std::lock_guard<std::mutex> lock(status_mu_);
+  SegmentationStatus s = published_;
+  s.stale = s.state == "ready" && seg_fingerprint_ != edit_fingerprint;
+  if (s.stale) {
+    s.message = "the scene was edited: the next click segments the edited scene";
+    s.can_undo = s.can_redo = false;
+  }
+  return s;
+}
+
+std::vector<uint8_t> SegmentationJobs::thumbnail(int index) const {
+  std::lock_guard<std::mutex> lock(status_mu_);
+  if (index < 0 || index >= int(thumbs_.size()))
+    throw AppError(ErrorKind::kNotFound,
+                   "no thumbnail " + std::to_string(index) + " (there are " + std::to_string(thumbs_.size()) + ")");
+  return thumbs_[size_t(index)];
+}
+
+}  // namespace isegman::server

@@ -1,0 +1,110 @@
+// The interactive segmentation of the web app as background jobs: loading SAM and
+// preparing the views, clicks, click undo/redo and new settings, each a job on the
+// JobRunner. A click's selection is handed to the EditState only while the edited scene
+// still matches the scene the segmentation runs on (edit_state.h); otherwise the next
+// click re-opens the segmentation on the edited scene.
+//
+// Locks: seg_mu_ (the Segmentation, held by jobs) before the EditState's lock before
+// status_mu_ (the published status and thumbnails). Request threads never wait on seg_mu_.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+#include "segment/propagation.h"
+#include "segment/session.h"
+#include "segment/views.h"
+#include "server/activity_log.h"
+#include "server/edit_state.h"
+#include "server/jobs.h"
+#include "server/segmentation.h"
+
+namespace isegman::models {
+class SamModel;
+}
+
+namespace isegman::server {
+
+struct SegmentationOptions {
+  bool enabled = true;
+  std::string sam_dir;              // encoder.onnx + sam.onnx; "" = models::default_sam_dir()
+  segment::SessionOptions session;
+  segment::ViewOptions views;
+  SegmentSettings settings;
+  int threads = 0;
+};
+
+// New settings; unset fields keep their current value.
+struct SettingsRequest {
+  std::optional<double> tau;
+  std::optional<std::string> views;
+  std::optional<segment::PropagationMode> mode;
+  std::optional<bool> inspection;
+};
+
+struct SegmentationStatus {
+  std::string state;    // off, starting, preparing, ready, error
+  std::string message;
+  bool stale = false;   // the scene was edited since: the next click segments the edited scene
+  size_t clicks = 0, selected = 0;
+  bool can_undo = false, can_redo = false;
+  std::vector<ViewEvidence> views;
+  uint64_t thumb_version = 0;
+  SegmentSettings settings;
+};
+
+class SegmentationJobs {
+ public:
+  // `bundle`: the cameras and paths (its Gaussians are not used; snapshots come from `scene`).
+  SegmentationJobs(const SceneBundle& bundle, SegmentationOptions options, EditState& scene, JobRunner& jobs,
+                   ActivityLog& log);
+
+  void start();  // loads SAM and prepares the views (a job)
+
+  uint64_t click(const ClickRecord& click);
+  uint64_t undo_click();
+  uint64_t redo_click();
+  uint64_t set_settings(const SettingsRequest& request);
+  // The edited scene changed (edit, undo, redo): when it is back to a scene an earlier
+  // segmentation ran on, a quick job makes that segmentation (its clicks, evidence and
+  // click undo) current again. Never throws; a full queue just skips it.
+  void scene_changed();
+
+  SegmentationStatus status(uint64_t edit_fingerprint) const;
+  // Evidence thumbnail of view `index` (JPEG); AppError(kNotFound) when absent.
+  std::vector<uint8_t> thumbnail(int index) const;
+
+ private:
+  using Progress = Segmentation::Progress;
+  std::shared_ptr<const SceneBundle> snapshot() const;
+  void prepare_job(const JobRunner::Report& report);
+  void ensure_current(const Progress& progress);       // seg_mu_ held
+  // Returns false when the selection should have been applied but the scene had changed.
+  bool publish(bool apply_selection);                   // seg_mu_ held
+  void set_state(const std::string& state, const std::string& message);
+  void require_available() const;
+  uint64_t submit(const std::string& name, std::function<void(const Progress&)> work);
+
+  const SceneBundle& bundle_;
+  const SegmentationOptions options_;
+  EditState& scene_;
+  JobRunner& jobs_;
+  ActivityLog& log_;
+
+  std::mutex seg_mu_;
+  std::shared_ptr<const models::SamModel> sam_;
+  std::unique_ptr<Segmentation> seg_;
+
+  mutable std::mutex status_mu_;
+  SegmentationStatus published_;
+  uint64_t seg_fingerprint_ = 0;
+  std::vector<uint64_t> kept_;  // fingerprints Segmentation::restore can bring back
+  std::vector<std::vector<uint8_t>> thumbs_;
+};
+
+}  // namespace isegman::server
