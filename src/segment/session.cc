@@ -99,10 +99,11 @@ bool Session::undo() {
 namespace {
 
 struct Agreement {
-  int mask = 0, coverage = 0, both = 0;
-  double iou() const { return mask + coverage - both > 0 ? double(both) / (mask + coverage - both) : 0.0; }
-  double mask_on_selection() const { return mask ? double(both) / mask : 0.0; }
-  double selection_inside() const { return coverage ? double(both) / coverage : 0.0; }
+  double mask = 0, coverage = 0, both = 0;  // pixels (coverage: the selection's rendered area)
+  double inside = -1;                       // share of the selection inside the mask, when measured by weight
+  double iou() const { return mask + coverage - both > 0 ? both / (mask + coverage - both) : 0.0; }
+  double mask_on_selection() const { return mask > 0 ? both / mask : 0.0; }
+  double selection_inside() const { return inside >= 0 ? inside : coverage > 0 ? both / coverage : 0.0; }
 };
 
 Agreement agreement(const Image& mask, const Image& coverage) {
@@ -373,11 +374,11 @@ RoundReport Session::run_round(State& next, const State& prev) {
       if (several) {  // the coverage decides the candidate, then the candidate's votes
         coverage = selection_values_coverage(views_[k], values, o.threads);
         take_candidate(vs, r, choose(r, &coverage, o.min_coverage_pixels));
-      } else {  // one pass gives the selection's coverage and the mask's votes
+      } else {  // one pass over the mask's tiles gives the selection's coverage and the mask's votes
         take_candidate(vs, r, r.mask_index);
         if (vs.mask_pixels > 0) {
           raw = masked_votes(views_[k].frame, mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height),
-                             o.threads, &values, &coverage, o.agreement_inspection);
+                             o.threads, &values, &coverage);
           have_raw = true;
         }
       }
@@ -390,7 +391,19 @@ RoundReport Session::run_round(State& next, const State& prev) {
       continue;
     }
     if (inspect) {
-      const Agreement a = agreement(mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height), coverage);
+      Agreement a = agreement(mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height), coverage);
+      if (have_raw) {
+        // The coverage is only rendered under the mask: the selection's whole extent in
+        // this view is its share of the view's all-pixel votes (the same blending weights).
+        double total = 0, inside = 0;
+        const ViewVotes& all = views_[k].all_votes;
+        for (size_t i = 0; i < all.index.size(); ++i)
+          if (current[all.index[i]]) total += double(all.weight[i]);
+        for (size_t i = 0; i < raw.index.size(); ++i)
+          if (current[raw.index[i]]) inside += double(raw.weight[i]);
+        a.coverage = std::max(a.both, total / kVoteScale);
+        a.inside = total > 0 ? inside / total : 0.0;
+      }
       vs.overlap = a.mask_on_selection();
       vs.selection_inside = a.selection_inside();
       vs.iou = a.iou();
