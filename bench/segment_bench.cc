@@ -60,9 +60,17 @@ Fixture* fixture(benchmark::State& state) {
   return f.get();
 }
 
+// Arg 1: the default pipeline (every addition on); arg 0: the paper's pipeline alone.
 void BM_Interaction(benchmark::State& state) {
   Fixture* f = fixture(state);
   if (!f) return;
+  segment::SessionOptions so;
+  if (state.range(0) == 0) {
+    so.depth_layers = so.agreement_inspection = so.choose_candidate = so.negative_regions = false;
+    so.selection_prompt_rounds = 0;
+    so.propagation.hidden_fallback = true;
+  }
+  f->session->set_options(so);
   segment::RoundReport last;
   for (auto _ : state) {
     last = f->session->click(f->view, f->click);
@@ -76,9 +84,10 @@ void BM_Interaction(benchmark::State& state) {
   state.counters["propagation_ms"] = last.ms_propagation;
   state.counters["sam_ms"] = last.ms_sam;
   state.counters["voting_ms"] = last.ms_voting;
+  state.counters["prompted_views"] = double(last.prompted);
   state.counters["embedding_ms_per_view"] = f->embed_ms_per_view;
 }
-BENCHMARK(BM_Interaction)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_Interaction)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 }  // namespace
 }  // namespace isegman

@@ -105,6 +105,8 @@ class Session {
   const std::vector<ViewState>& view_states() const { return state_.views; }
   const std::vector<SegmentView>& views() const { return views_; }
   const SessionOptions& options() const { return options_; }
+  // Options for the following rounds (the views stay; benchmarks compare settings on them).
+  void set_options(const SessionOptions& options) { options_ = options; }
   // Coverage of the current selection in a view (1 channel, working resolution).
   Image selection_coverage(int view) const;
 
