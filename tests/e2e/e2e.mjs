@@ -175,6 +175,27 @@ try {
   await page.waitForSelector(`body[data-gaussians="${total - selected}"]`, { timeout: 20000 });
   check(true, 'undo/redo of the removal');
 
+  // One history: Ctrl+Z walks back across the edit and then the click (to the start),
+  // Ctrl+Shift+Z forward again; the panel lists the steps with the current position.
+  check(await page.getAttribute('body', 'data-history-steps') === '2' && await page.getAttribute('body', 'data-history-cursor') === '2',
+    'the history lists the click and the removal');
+  await page.keyboard.press('Control+z');
+  await page.waitForSelector(`body[data-gaussians="${total}"][data-history-cursor="1"]`, { timeout: 20000 });
+  await page.keyboard.press('Control+z');
+  await page.waitForSelector('body[data-history-cursor="0"][data-selected="0"]', { timeout: 20000 });
+  await page.waitForSelector('body[data-clicks="0"][data-busy="false"]', { timeout: 30000 });
+  const listed = await page.$$eval('#history-list li', (e) => e.map((li) => li.className));
+  check(listed.length === 3 && listed[0].includes('current') && listed[1].includes('undone') && listed[2].includes('undone'),
+    `Ctrl+Z twice walks back across the edit and the click to the start (${listed.join(' | ')})`);
+  await page.screenshot({ path: path.join(shots, '04b-history-undone.png') });
+  await page.keyboard.press('Control+Shift+z');
+  await page.waitForSelector(`body[data-history-cursor="1"][data-selected="${selected}"]`, { timeout: 20000 });
+  await page.waitForSelector('body[data-clicks="1"][data-busy="false"]', { timeout: 60000 });
+  await page.keyboard.press('Control+Shift+z');
+  await page.waitForSelector(`body[data-history-cursor="2"][data-gaussians="${total - selected}"]`, { timeout: 20000 });
+  check(true, 'Ctrl+Shift+Z redoes the click and the removal');
+  await page.waitForSelector('body[data-busy="false"]', { timeout: 30000 });
+
   // Export: download and on the server.
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#btn-download-ply')]);
   const downloaded = path.join(work, 'downloaded.ply');
