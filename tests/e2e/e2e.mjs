@@ -219,6 +219,15 @@ try {
   await page.waitForSelector('#view-img[data-key^="f"]');
   await page.waitForTimeout(300);
   await page.screenshot({ path: path.join(shots, '05-free-camera.png') });
+  // Orbit a little, then "Nearest view" returns to the training camera it started from.
+  const vb = await (await page.$('#view-img')).boundingBox();
+  await page.mouse.move(vb.x + vb.width / 2, vb.y + vb.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(vb.x + vb.width / 2 + 12, vb.y + vb.height / 2, { steps: 3 });
+  await page.mouse.up();
+  await page.click('#btn-nearest');
+  await page.waitForSelector(`#view-img[data-key="v${fx.camera}"]`, { timeout: 10000 });
+  check(true, 'Nearest view returns from the free camera to the nearest training camera');
   check(pageErrors.length === 0, `no errors in the page${pageErrors.length ? ': ' + pageErrors.join(' | ') : ''}`);
   log(`passed in ${((Date.now() - t0) / 1000).toFixed(1)} s; screenshots in ${shots}`);
   await context.close();

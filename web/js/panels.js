@@ -108,7 +108,13 @@ export class Panels {
     });
     list.replaceChildren(...items);
     const cur = list.children[h.cursor];
-    if (cur) cur.scrollIntoView({ block: 'nearest' });
+    // Keep the current step in view by scrolling the list only (scrollIntoView would
+    // scroll the whole panel too).
+    if (cur) {
+      const top = cur.offsetTop, bottom = top + cur.offsetHeight;
+      if (top < list.scrollTop) list.scrollTop = top;
+      else if (bottom > list.scrollTop + list.clientHeight) list.scrollTop = bottom - list.clientHeight;
+    }
   }
 
   download(format) {
