@@ -210,6 +210,14 @@ void register_routes(httplib::Server& server, AppState& app) {
     const json body = req.body.empty() ? json::object() : parse_body(req.body);
     send_json(res, to_json(app.select(select_from_json(req.matches[1].str(), body))));
   }));
+  // The one history of clicks, selections and edits; 200 with the step walked (its kind,
+  // and a job when it was a click).
+  routes->post("/api/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, to_json(app.undo()));
+  }));
+  routes->post("/api/redo", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, to_json(app.redo()));
+  }));
   routes->post("/api/edit/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
     send_json(res, to_json(app.undo_edit()));
   }));

@@ -164,6 +164,13 @@ json to_json(const SceneInfo& s) {
           {"gaussians", s.gaussians},
           {"sh_degree", s.sh_degree},
           {"bounds", {{"lo", vec_json(s.lo)}, {"hi", vec_json(s.hi)}}},
+          {"robust_bounds",
+           {{"lo", vec_json(s.robust.lo)},
+            {"hi", vec_json(s.robust.hi)},
+            {"center", vec_json(s.robust.center)},
+            {"radius", s.robust.radius}}},
+          {"pivot", vec_json(s.robust.center)},
+          {"orbit_distance", s.orbit_distance},
           {"up", n > 1e-9 ? vec_json(up_sum / n) : vec_json({0, 0, 1})},
           {"cameras", cams},
           {"preview_side", s.preview_side},
@@ -186,6 +193,7 @@ json to_json(const AppStatus& s) {
   j["edit"] = {{"gaussians", e.gaussians},   {"selected", e.selected},     {"can_undo", e.can_undo},
                {"can_redo", e.can_redo},     {"undo_steps", e.undo_steps}, {"redo_steps", e.redo_steps},
                {"notice", e.notice},         {"revision", e.revision}};
+  j["history"] = to_json(s.history);
   const SegmentationStatus& g = s.segmentation;
   json views = json::array();
   for (const ViewEvidence& v : g.views)
@@ -224,8 +232,19 @@ json to_json(const AppStatus& s) {
 }
 
 json to_json(const EditResult& r) {
-  return {{"label", r.label}, {"notes", r.notes}, {"notice", r.notice}, {"gaussians", r.gaussians},
-          {"selected", r.selected}};
+  json j = {{"label", r.label},         {"notes", r.notes},       {"notice", r.notice},
+            {"gaussians", r.gaussians}, {"selected", r.selected}, {"kind", step_kind_name(r.kind)}};
+  if (r.job) j["job"] = r.job;
+  return j;
+}
+
+json to_json(const Timeline& t) {
+  json entries = json::array();
+  for (const TimelineEntry& e : t.entries) entries.push_back({{"kind", step_kind_name(e.kind)}, {"label", e.label}});
+  return {{"entries", entries},
+          {"cursor", t.cursor},
+          {"can_undo", t.cursor > 0},
+          {"can_redo", t.cursor < t.entries.size()}};
 }
 
 json to_json(const SelectionBounds& b) {

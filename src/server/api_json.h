@@ -32,6 +32,7 @@ json to_json(const SceneInfo& info);
 json to_json(const AppStatus& status);
 json to_json(const JobStatus& job);
 json to_json(const EditResult& result);
+json to_json(const Timeline& history);
 json to_json(const SelectionBounds& bounds);
 json to_json(const ExportResult& result);
 

@@ -72,6 +72,8 @@ SceneInfo AppState::scene_info() const {
   const EditStatus e = scene_.status();
   s.gaussians = e.gaussians;
   scene_.bounds(s.lo, s.hi, s.sh_degree);
+  s.robust = scene_.robust_bounds();
+  s.orbit_distance = s.robust.radius / std::tan(M_PI / 6) / 0.8;
   s.cameras = bundle_.cameras;
   s.preview_side = options_.preview_side;
   s.out_dir = fs::absolute(options_.out_dir).lexically_normal().string();
@@ -87,6 +89,7 @@ AppStatus AppState::status() const {
   s.queued = jobs_.queued();
   s.edit = scene_.status();
   s.segmentation = segmentation_.status(s.edit.fingerprint);
+  s.history = scene_.timeline();
   s.log = log_.entries();
   s.version = log_.version() + s.edit.revision;
   return s;
@@ -152,17 +155,19 @@ EditResult AppState::edit(const edit::EditOp& op) {
   return r;
 }
 
-EditResult AppState::undo_edit() {
-  EditResult r = scene_.undo();
+EditResult AppState::undo(StepFilter filter) {
+  EditResult r = scene_.undo(filter);
   log_.note("undo: " + r.label);
-  segmentation_.scene_changed();
+  if (r.kind == StepKind::kClick) r.job = segmentation_.follow_undo(r.fingerprint);
+  else segmentation_.scene_changed();
   return r;
 }
 
-EditResult AppState::redo_edit() {
-  EditResult r = scene_.redo();
+EditResult AppState::redo(StepFilter filter) {
+  EditResult r = scene_.redo(filter);
   log_.note("redo: " + r.label);
-  segmentation_.scene_changed();
+  if (r.kind == StepKind::kClick) r.job = segmentation_.follow_redo(r.fingerprint);
+  else segmentation_.scene_changed();
   return r;
 }
 

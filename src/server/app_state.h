@@ -54,7 +54,9 @@ struct SceneInfo {
   std::string name, ply;
   size_t gaussians = 0;
   int sh_degree = 0;
-  Vec3 lo, hi;
+  Vec3 lo, hi;             // the bounding box of the centres (outliers included)
+  RobustBounds robust{};   // percentile box: the free camera's pivot is its centre
+  double orbit_distance = 0;  // where the robust box fills ~80% of a 60-degree view
   std::vector<Camera> cameras;
   int preview_side = 0;
   std::string out_dir, data_dir;
@@ -67,6 +69,7 @@ struct AppStatus {
   size_t queued = 0;
   EditStatus edit;
   SegmentationStatus segmentation;
+  Timeline history;  // the one history of clicks, selections and edits
   std::vector<LogEntry> log;
   uint64_t version = 0;
 };
@@ -96,8 +99,9 @@ class AppState {
 
   // Segmentation work runs as jobs; these return the job id.
   uint64_t click(const ClickRecord& click) { return segmentation_.click(click); }
-  uint64_t undo_click() { return segmentation_.undo_click(); }
-  uint64_t redo_click() { return segmentation_.redo_click(); }
+  // The old click endpoints: walk the history when its step is a click (the job id).
+  uint64_t undo_click() { return undo(StepFilter::kClick).job; }
+  uint64_t redo_click() { return redo(StepFilter::kClick).job; }
   uint64_t set_settings(const SettingsRequest& request) { return segmentation_.set_settings(request); }
 
   EditResult select(const SelectRequest& request);
@@ -105,8 +109,14 @@ class AppState {
   // Runs an edit (edit/edit_op.h, the CLI's vocabulary); a combine's other scene is
   // read from `op.other_path` inside the data folder.
   EditResult edit(const edit::EditOp& op);
-  EditResult undo_edit();
-  EditResult redo_edit();
+  // One history of clicks, selections and edits (EditState's timeline): the scene and
+  // selection are restored at once; walking over a click also queues a job that brings
+  // the segmentation's clicks in line (EditResult::job).
+  EditResult undo(StepFilter filter = StepFilter::kAny);
+  EditResult redo(StepFilter filter = StepFilter::kAny);
+  // The old edit endpoints: walk the history when its step is not a click.
+  EditResult undo_edit() { return undo(StepFilter::kNotClick); }
+  EditResult redo_edit() { return redo(StepFilter::kNotClick); }
 
   std::vector<uint8_t> export_bytes(edit::SceneFormat format) const { return scene_.serialize(format); }
   // Writes under the output directory.

@@ -39,6 +39,15 @@ size_t count_selected(const std::vector<bool>& mask) { return size_t(std::count(
 
 }  // namespace
 
+const char* step_kind_name(StepKind kind) {
+  switch (kind) {
+    case StepKind::kClick: return "click";
+    case StepKind::kEdit: return "edit";
+    case StepKind::kSelect: return "select";
+  }
+  return "edit";
+}
+
 EditState::EditState(GaussianScene scene) : session_(std::move(scene)) {
   fingerprint_ = session_.scene().fingerprint();
 }
@@ -57,6 +66,11 @@ void EditState::bounds(Vec3& lo, Vec3& hi, int& sh_degree) const {
   std::shared_lock<std::shared_mutex> lock(mu_);
   session_.scene().bounds(lo, hi);
   sh_degree = session_.scene().sh_degree;
+}
+
+RobustBounds EditState::robust_bounds() const {
+  std::shared_lock<std::shared_mutex> lock(mu_);
+  return isegman::robust_bounds(session_.scene());
 }
 
 EditStatus EditState::status() const {
@@ -81,6 +95,25 @@ EditResult EditState::result(const std::string& label, const std::vector<std::st
 void EditState::changed() {
   fingerprint_ = session_.scene().fingerprint();
   ++revision_;
+}
+
+void EditState::record(StepKind kind, const std::string& label) {
+  // A new step drops the redo tail (History::push did the same), then the entries follow
+  // the history's cap: steps it dropped from the front are dropped here too.
+  timeline_.entries.resize(timeline_.cursor);
+  timeline_.entries.push_back({kind, label, session_.scene().fingerprint()});
+  timeline_.cursor = timeline_.entries.size();
+  const size_t kept = session_.history().undo_steps();
+  if (timeline_.cursor > kept) {
+    const size_t drop = timeline_.cursor - kept;
+    timeline_.entries.erase(timeline_.entries.begin(), timeline_.entries.begin() + long(drop));
+    timeline_.cursor = kept;
+  }
+}
+
+Timeline EditState::timeline() const {
+  std::shared_lock<std::shared_mutex> lock(mu_);
+  return timeline_;
 }
 
 EditResult EditState::select(const SelectRequest& r) {
@@ -116,15 +149,19 @@ EditResult EditState::select(const SelectRequest& r) {
   }
   label += ": " + std::to_string(next.count()) + " Gaussians";
   session_.select(next, label);
+  record(StepKind::kSelect, label);
   ++revision_;
-  return result(label, {});
+  EditResult out = result(label, {});
+  out.kind = StepKind::kSelect;
+  return out;
 }
 
 bool EditState::select_from_segmentation(const std::vector<bool>& mask, uint64_t fingerprint,
-                                         const std::string& label) {
+                                         const std::string& label, StepKind kind) {
   std::unique_lock<std::shared_mutex> lock(mu_);
   if (fingerprint != fingerprint_) return false;
   session_.select(Selection::from_mask(session_.scene(), mask), label);
+  record(kind, label);
   ++revision_;
   return true;
 }
@@ -145,23 +182,49 @@ EditResult EditState::edit(const edit::EditOp& op, const GaussianScene* other) {
     invalid(e.what());
   }
   changed();
+  record(StepKind::kEdit, out.label);
   return result(out.label, out.notes);
 }
 
-EditResult EditState::undo() {
-  std::unique_lock<std::shared_mutex> lock(mu_);
-  if (!session_.history().can_undo()) conflict("no edit to undo");
-  const std::string label = session_.undo();
-  changed();
-  return result(label, {});
+namespace {
+
+void check_filter(const TimelineEntry& e, StepFilter filter, const char* verb) {
+  if (filter == StepFilter::kClick && e.kind != StepKind::kClick)
+    conflict(std::string("the step to ") + verb + " is not a click ('" + e.label + "'): use /api/" + verb);
+  if (filter == StepFilter::kNotClick && e.kind == StepKind::kClick)
+    conflict(std::string("the step to ") + verb + " is a click ('" + e.label + "'): use /api/" + verb);
 }
 
-EditResult EditState::redo() {
+}  // namespace
+
+EditResult EditState::undo(StepFilter filter) {
   std::unique_lock<std::shared_mutex> lock(mu_);
-  if (!session_.history().can_redo()) conflict("no edit to redo");
-  const std::string label = session_.redo();
+  if (timeline_.cursor == 0 || !session_.history().can_undo())
+    conflict(filter == StepFilter::kClick ? "no click to undo" : filter == StepFilter::kNotClick ? "no edit to undo" : "nothing to undo");
+  const TimelineEntry entry = timeline_.entries[timeline_.cursor - 1];
+  check_filter(entry, filter, "undo");
+  const std::string label = session_.undo();
+  --timeline_.cursor;
   changed();
-  return result(label, {});
+  EditResult r = result(label, {});
+  r.kind = entry.kind;
+  r.fingerprint = entry.fingerprint;
+  return r;
+}
+
+EditResult EditState::redo(StepFilter filter) {
+  std::unique_lock<std::shared_mutex> lock(mu_);
+  if (timeline_.cursor >= timeline_.entries.size() || !session_.history().can_redo())
+    conflict(filter == StepFilter::kClick ? "no click to redo" : filter == StepFilter::kNotClick ? "no edit to redo" : "nothing to redo");
+  const TimelineEntry entry = timeline_.entries[timeline_.cursor];
+  check_filter(entry, filter, "redo");
+  const std::string label = session_.redo();
+  ++timeline_.cursor;
+  changed();
+  EditResult r = result(label, {});
+  r.kind = entry.kind;
+  r.fingerprint = entry.fingerprint;
+  return r;
 }
 
 SelectionBounds EditState::selection_bounds() const {

@@ -11,6 +11,7 @@
 
 #include "core/image.h"
 #include "core/math.h"
+#include "core/virtual_views.h"
 #include "core/scene.h"
 #include "edit/edit_op.h"
 #include "edit/history.h"
@@ -29,6 +30,28 @@ struct SelectRequest {
   edit::CombineMode mode = edit::CombineMode::kReplace;  // box, sphere
 };
 
+// The kinds of step in the one history: a segmentation click (its selection applied to
+// the scene), an edit of the scene, or a selection tool (box, sphere, invert, ...).
+enum class StepKind { kClick, kEdit, kSelect };
+const char* step_kind_name(StepKind kind);
+
+struct TimelineEntry {
+  StepKind kind = StepKind::kEdit;
+  std::string label;
+  uint64_t fingerprint = 0;  // the scene's fingerprint while this step is applied
+};
+
+// The one history of clicks, selections and edits: `entries[0, cursor)` are applied,
+// `entries[cursor, end)` can be redone.
+struct Timeline {
+  std::vector<TimelineEntry> entries;
+  size_t cursor = 0;
+};
+
+// Which steps an undo/redo may take: any, or only a click (the old click endpoints), or
+// only a non-click (the old edit endpoints).
+enum class StepFilter { kAny, kClick, kNotClick };
+
 // What an edit, a selection change or an undo/redo did.
 struct EditResult {
   std::string label;
@@ -36,6 +59,9 @@ struct EditResult {
   std::string notice;    // history cap messages
   size_t gaussians = 0;
   size_t selected = 0;
+  StepKind kind = StepKind::kEdit;  // the step made, or undone/redone
+  uint64_t fingerprint = 0;         // undo/redo of a click: the scene it was made on
+  uint64_t job = 0;      // undo/redo of a click: the job that brings the segmentation's clicks in line
 };
 
 struct EditStatus {
@@ -62,17 +88,25 @@ class EditState {
   uint64_t fingerprint() const;
   uint64_t revision() const { return revision_.load(); }
   void bounds(Vec3& lo, Vec3& hi, int& sh_degree) const;
+  // Percentile bounds of the opacity-weighted centres (core/virtual_views.h): far,
+  // faint outliers do not move them.
+  RobustBounds robust_bounds() const;
   EditStatus status() const;
 
   EditResult select(const SelectRequest& request);
   // Makes a click's selection current when the scene still has `fingerprint`; false
   // (nothing changed) when the scene was edited meanwhile.
-  bool select_from_segmentation(const std::vector<bool>& mask, uint64_t fingerprint, const std::string& label);
+  // Recorded in the history as one step of `kind` (a click, or kSelect for a re-run
+  // under new settings).
+  bool select_from_segmentation(const std::vector<bool>& mask, uint64_t fingerprint, const std::string& label,
+                                StepKind kind = StepKind::kClick);
   // `other`: the loaded scene of a combine. Throws AppError(kConflict) when nothing is
   // selected, AppError(kInvalid) for parameters the toolbox refuses.
   EditResult edit(const edit::EditOp& op, const GaussianScene* other = nullptr);
-  EditResult undo();
-  EditResult redo();
+  // Walk the one history; AppError(kConflict) when there is no step (of that filter).
+  EditResult undo(StepFilter filter = StepFilter::kAny);
+  EditResult redo(StepFilter filter = StepFilter::kAny);
+  Timeline timeline() const;
   SelectionBounds selection_bounds() const;
 
   // Renders the edited scene, the selection tinted when `highlight`.
@@ -84,7 +118,9 @@ class EditState {
  private:
   EditResult result(const std::string& label, const std::vector<std::string>& notes) const;
   void changed();  // lock held exclusively
+  void record(StepKind kind, const std::string& label);  // after a step was pushed; lock held
 
+  Timeline timeline_;
   mutable std::shared_mutex mu_;
   edit::EditSession session_;
   uint64_t fingerprint_ = 0;

@@ -17,7 +17,6 @@ namespace {
 
 constexpr int kThumbSide = 240;
 const char* kReady = "click an object: left = add, right or shift = remove";
-const char* kEditedSince = "the scene was edited after these clicks; undo the edit or click again";
 
 }  // namespace
 
@@ -97,12 +96,12 @@ void SegmentationJobs::ensure_current(const Progress& progress) {
   set_state("ready", kReady);
 }
 
-bool SegmentationJobs::publish(bool apply_selection) {
+bool SegmentationJobs::publish(bool apply_selection, const std::string& what, StepKind kind) {
   if (!seg_) return true;
   const bool applied =
       !apply_selection || !seg_->is_open() ||
       scene_.select_from_segmentation(seg_->selection(), seg_->fingerprint(),
-                                      "click selection (" + std::to_string(seg_->selected_count()) + " Gaussians)");
+                                      what + ": " + std::to_string(seg_->selected_count()) + " Gaussians", kind);
   std::vector<std::vector<uint8_t>> thumbs = seg_->thumbnails(kThumbSide);
   std::vector<ViewEvidence> views = seg_->evidence();
   std::lock_guard<std::mutex> lock(status_mu_);
@@ -157,9 +156,12 @@ uint64_t SegmentationJobs::click(const ClickRecord& c) {
     ensure_current(progress);
     const auto t0 = std::chrono::steady_clock::now();
     segment::RoundReport r = seg_->click(c, progress);
+    const std::string what = std::string(c.click.label ? "positive" : "negative") + " click in " +
+                             (c.free_camera ? std::string("the free camera")
+                                            : "camera " + std::to_string(c.camera_index));
     // An edit landed while this click was segmented: its selection refers to the old
     // scene. Say so (the page shows the job's error) rather than drop it silently.
-    if (!publish(true)) conflict("the scene was edited while this click was being segmented: click again");
+    if (!publish(true, what)) conflict("the scene was edited while this click was being segmented: click again");
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     char line[256];
     std::snprintf(line, sizeof line, "%s click: %zu Gaussians selected; %d views segmented, %d accepted, %d dropped (%.1f s)",
@@ -168,34 +170,32 @@ uint64_t SegmentationJobs::click(const ClickRecord& c) {
   });
 }
 
-uint64_t SegmentationJobs::undo_click() {
-  const uint64_t edit_fp = scene_.fingerprint();
-  {
-    std::lock_guard<std::mutex> lock(status_mu_);
-    if (!published_.can_undo) conflict("no click to undo");
-    if (seg_fingerprint_ != edit_fp) conflict(kEditedSince);
+uint64_t SegmentationJobs::follow(bool undo, uint64_t fingerprint) {
+  try {
+    return jobs_.submit(undo ? "undo click" : "redo click", [this, undo, fingerprint](const JobRunner::Report& report) {
+      std::lock_guard<std::mutex> seg_lock(seg_mu_);
+      if (!seg_ || !seg_->is_open()) return;
+      // The click was made on the segmentation of `fingerprint`: make it current (it is
+      // kept when later edits re-opened the segmentation), walk its click log, then show
+      // the segmentation of the scene as it now is.
+      if (seg_->fingerprint() != fingerprint && !seg_->restore(fingerprint)) return;
+      try {
+        if (undo && seg_->can_undo()) seg_->undo();
+        else if (!undo && seg_->can_redo()) seg_->redo(report);
+      } catch (const AppError& e) {
+        log_.note(std::string(undo ? "undo" : "redo") + " click: the segmentation's clicks are out of step (" +
+                      e.what() + ")",
+                  "warn");
+      }
+      const uint64_t now = scene_.fingerprint();
+      if (seg_->fingerprint() != now) seg_->restore(now);
+      publish(false);
+      log_.note(std::string(undo ? "undid" : "redid") + " a click: " + std::to_string(seg_->clicks().size()) +
+                " click(s) in the segmentation");
+    });
+  } catch (const AppError&) {
+    return 0;  // queue full or stopping: the selection is restored; the evidence lags
   }
-  return submit("undo click", [this](const Progress&) {
-    if (!seg_ || seg_->fingerprint() != scene_.fingerprint()) conflict(kEditedSince);
-    seg_->undo();
-    if (!publish(true)) conflict(kEditedSince);
-    log_.note("undid a click: " + std::to_string(seg_->selected_count()) + " Gaussians selected");
-  });
-}
-
-uint64_t SegmentationJobs::redo_click() {
-  const uint64_t edit_fp = scene_.fingerprint();
-  {
-    std::lock_guard<std::mutex> lock(status_mu_);
-    if (!published_.can_redo) conflict("no click to redo");
-    if (seg_fingerprint_ != edit_fp) conflict(kEditedSince);
-  }
-  return submit("redo click", [this](const Progress& progress) {
-    if (!seg_ || seg_->fingerprint() != scene_.fingerprint()) conflict(kEditedSince);
-    seg_->redo(progress);
-    if (!publish(true)) conflict(kEditedSince);
-    log_.note("redid a click: " + std::to_string(seg_->selected_count()) + " Gaussians selected");
-  });
 }
 
 uint64_t SegmentationJobs::set_settings(const SettingsRequest& request) {
@@ -220,7 +220,7 @@ uint64_t SegmentationJobs::set_settings(const SettingsRequest& request) {
     set_state("preparing", "applying settings: rebuilding views and replaying clicks");
     seg_->reconfigure(s, progress);
     set_state("ready", kReady);
-    publish(seg_->can_undo());
+    publish(seg_->can_undo(), "selection under new settings", StepKind::kSelect);
     char line[200];
     std::snprintf(line, sizeof line, "settings: tau %.2f, views %s (%zu), %s propagation, inspection %s", s.tau,
                   s.views_spec.c_str(), seg_->view_count(), segment::mode_name(s.mode), s.inspection ? "on" : "off");

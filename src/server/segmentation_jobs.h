@@ -67,8 +67,12 @@ class SegmentationJobs {
   void start();  // loads SAM and prepares the views (a job)
 
   uint64_t click(const ClickRecord& click);
-  uint64_t undo_click();
-  uint64_t redo_click();
+  // The one history (EditState's timeline) walked back or forward over a click made on
+  // the scene with `fingerprint`; the history already restored the selection exactly. A
+  // job brings the segmentation's click log and evidence in line. Returns its id (0 when
+  // none could be queued); never throws.
+  uint64_t follow_undo(uint64_t fingerprint) { return follow(true, fingerprint); }
+  uint64_t follow_redo(uint64_t fingerprint) { return follow(false, fingerprint); }
   uint64_t set_settings(const SettingsRequest& request);
   // The edited scene changed (edit, undo, redo): when it is back to a scene an earlier
   // segmentation ran on, a quick job makes that segmentation (its clicks, evidence and
@@ -85,7 +89,10 @@ class SegmentationJobs {
   void prepare_job(const JobRunner::Report& report);
   void ensure_current(const Progress& progress);       // seg_mu_ held
   // Returns false when the selection should have been applied but the scene had changed.
-  bool publish(bool apply_selection);                   // seg_mu_ held
+  // `what` and `kind` name the history step the applied selection becomes.
+  bool publish(bool apply_selection, const std::string& what = "click",
+               StepKind kind = StepKind::kClick);   // seg_mu_ held
+  uint64_t follow(bool undo, uint64_t fingerprint);
   void set_state(const std::string& state, const std::string& message);
   void require_available() const;
   uint64_t submit(const std::string& name, std::function<void(const Progress&)> work);

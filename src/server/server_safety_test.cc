@@ -243,7 +243,7 @@ TEST(ServerSafety, WrongMethodsAndEmptyBodies) {
   EXPECT_EQ(r->get_header_value("Allow"), "GET, HEAD, POST");
   EXPECT_EQ(c->Delete("/no/such/thing")->status, 404);
 
-  for (const char* path : {"/api/edit/undo", "/api/edit/redo", "/api/click/undo"}) {
+  for (const char* path : {"/api/undo", "/api/redo", "/api/edit/undo", "/api/edit/redo", "/api/click/undo"}) {
     Raw raw(s.port);  // like `curl -X POST`: no body, no Content-Length
     raw.send(std::string("POST ") + path + " HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(s.port) + "\r\n\r\n");
     const std::string answer = raw.read_all(5);

@@ -228,6 +228,90 @@ TEST(ServerApi, SelectionToolsEditsUndoRedo) {
   s.post_json("/api/edit/combine", R"({"path": "/no/such/scene.ply"})", 400);
 }
 
+// The one history without SAM: selections and edits are its entries, /api/undo and
+// /api/redo walk it, and a new step after an undo drops the redo tail.
+TEST(ServerApi, OneHistoryWalksSelectionsAndEdits) {
+  DemoScene d = small_demo();
+  const size_t n = d.bundle.gaussians.size();
+  Running s(d.bundle, no_segmentation(temp_dir("history")));
+  json st = s.get_json("/api/status");
+  EXPECT_EQ(st["history"]["entries"].size(), 0u);
+  EXPECT_FALSE(st["history"]["can_undo"].get<bool>());
+  s.post_json("/api/undo", "", 409);
+  s.post_json("/api/redo", "", 409);
+  const DemoObject& obj = d.objects[0];
+  const Vec3 lo = obj.center - Vec3{obj.radius, obj.radius, obj.radius};
+  const Vec3 hi = obj.center + Vec3{obj.radius, obj.radius, obj.radius};
+  json body = {{"lo", {lo.x, lo.y, lo.z}}, {"hi", {hi.x, hi.y, hi.z}}};
+  const size_t k = s.post_json("/api/select/box", body.dump())["selected"].get<size_t>();
+  ASSERT_GT(k, 0u);
+  s.post_json("/api/edit/remove", "{}");
+  st = s.get_json("/api/status");
+  ASSERT_EQ(st["history"]["entries"].size(), 2u);
+  EXPECT_EQ(st["history"]["entries"][0]["kind"], "select");
+  EXPECT_EQ(st["history"]["entries"][1]["kind"], "edit");
+  EXPECT_EQ(st["history"]["cursor"].get<size_t>(), 2u);
+  // A click endpoint refuses a non-click step (no segmentation: nothing to follow).
+  s.post_json("/api/click/undo", "", 409);
+  json u = s.post_json("/api/undo", "");
+  EXPECT_EQ(u["kind"], "edit");
+  EXPECT_EQ(u["gaussians"].get<size_t>(), n);
+  u = s.post_json("/api/undo", "");
+  EXPECT_EQ(u["kind"], "select");
+  EXPECT_EQ(u["selected"].get<size_t>(), 0u);
+  s.post_json("/api/undo", "", 409);
+  EXPECT_EQ(s.get_json("/api/status")["history"]["cursor"].get<size_t>(), 0u);
+  EXPECT_EQ(s.post_json("/api/redo", "")["selected"].get<size_t>(), k);
+  EXPECT_EQ(s.post_json("/api/redo", "")["gaussians"].get<size_t>(), n - k);
+  s.post_json("/api/redo", "", 409);
+  s.post_json("/api/undo", "");
+  s.post_json("/api/select/invert", "{}");
+  st = s.get_json("/api/status");
+  ASSERT_EQ(st["history"]["entries"].size(), 2u);
+  EXPECT_EQ(st["history"]["entries"][1]["kind"], "select");
+  EXPECT_FALSE(st["history"]["can_redo"].get<bool>());
+  EXPECT_EQ(st["edit"]["selected"].get<size_t>(), n - k);
+}
+
+// The free camera's pivot is the centre of the robust (percentile) bounds: far outliers
+// stretch the bounding box but do not move the pivot or the orbit distance.
+TEST(ServerApi, OrbitPivotIgnoresFarOutliers) {
+  DemoScene d = small_demo();
+  const GaussianScene& g0 = d.bundle.gaussians;
+  const size_t n = g0.size(), outliers = std::max<size_t>(n / 50, 3);
+  GaussianScene g = g0;
+  for (size_t k = 0; k < outliers; ++k) {
+    g.append_from(g0, k);
+    const size_t i = g.size() - 1;
+    g.positions[3 * i] = 5000.f + float(k);
+    g.positions[3 * i + 1] = -4000.f;
+    g.positions[3 * i + 2] = 7000.f;
+  }
+  d.bundle.gaussians = g;
+  Running s(d.bundle, no_segmentation(temp_dir("pivot")));
+  json scene = s.get_json("/api/scene");
+  const auto v = [](const json& a) { return Vec3{a[0].get<double>(), a[1].get<double>(), a[2].get<double>()}; };
+  const Vec3 lo = v(scene["bounds"]["lo"]), hi = v(scene["bounds"]["hi"]);
+  const Vec3 rlo = v(scene["robust_bounds"]["lo"]), rhi = v(scene["robust_bounds"]["hi"]);
+  const Vec3 pivot = v(scene["pivot"]);
+  EXPECT_GE(hi.x, 5000.0);  // the raw box reaches the outliers
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_GE(pivot[a], rlo[a]) << a;
+    EXPECT_LE(pivot[a], rhi[a]) << a;
+    EXPECT_LT(rhi[a] - rlo[a], 0.1 * (hi[a] - lo[a])) << a;  // much smaller than the raw box
+  }
+  // The objects of the demo scene lie within a few units of the origin.
+  Vec3 lo0, hi0;
+  g0.bounds(lo0, hi0);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_GE(pivot[a], lo0[a]) << a;
+    EXPECT_LE(pivot[a], hi0[a]) << a;
+  }
+  const double dist = scene["orbit_distance"].get<double>();
+  EXPECT_GT(dist, 0.0);
+  EXPECT_LT(dist, 10 * norm(hi0 - lo0));
+}
+
 TEST(ServerApi, CombineLoadsASecondScene) {
   DemoScene d = small_demo();
   const std::string dir = temp_dir("combine");
@@ -514,13 +598,53 @@ TEST(ServerApi, ClickSelectsTheObjectWithSam) {
   st = s.get_json("/api/status");
   EXPECT_FALSE(st["segmentation"]["stale"].get<bool>());
   EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 1);
-  while (s.get_json("/api/status")["edit"]["can_undo"].get<bool>()) s.post_json("/api/edit/undo", "");
+  // One history: [click, remove, click]; the click's selection is part of its entry.
+  st = s.get_json("/api/status");
+  ASSERT_EQ(st["history"]["entries"].size(), 3u) << st["history"].dump();
+  EXPECT_EQ(st["history"]["entries"][0]["kind"], "click");
+  EXPECT_EQ(st["history"]["entries"][1]["kind"], "edit");
+  EXPECT_EQ(st["history"]["entries"][2]["kind"], "click");
+  EXPECT_EQ(st["history"]["cursor"].get<size_t>(), 3u);
+  // The second click is not an edit: the old edit endpoint refuses it, /api/undo walks it.
+  s.post_json("/api/edit/undo", "", 409);
+  EXPECT_EQ(s.post_json("/api/undo", "")["kind"], "click");
+  EXPECT_EQ(s.post_json("/api/undo", "")["kind"], "edit");
   ASSERT_TRUE(s.app->jobs().wait_idle(60));
   st = s.get_json("/api/status");
   EXPECT_EQ(st["edit"]["gaussians"].get<size_t>(), d.bundle.gaussians.size());
+  EXPECT_EQ(st["edit"]["selected"].get<size_t>(), selected);
   EXPECT_FALSE(st["segmentation"]["stale"].get<bool>()) << st["segmentation"].dump();
   EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 1);
   EXPECT_TRUE(st["segmentation"]["can_undo"].get<bool>());
+
+  // Click, edit; undo twice returns to the start, redo twice returns to the edit, and a
+  // new action after an undo drops the redo tail.
+  json u = s.post_json("/api/undo", "");
+  EXPECT_EQ(u["kind"], "click");
+  EXPECT_GT(u["job"].get<uint64_t>(), 0u);
+  ASSERT_TRUE(s.app->jobs().wait_idle(60));
+  st = s.get_json("/api/status");
+  EXPECT_EQ(st["history"]["cursor"].get<size_t>(), 0u);
+  EXPECT_EQ(st["edit"]["selected"].get<size_t>(), 0u);
+  EXPECT_EQ(st["edit"]["gaussians"].get<size_t>(), d.bundle.gaussians.size());
+  EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 0);
+  s.post_json("/api/undo", "", 409);
+  EXPECT_EQ(s.post_json("/api/redo", "")["kind"], "click");
+  ASSERT_TRUE(s.app->jobs().wait_idle(120));
+  EXPECT_EQ(s.post_json("/api/redo", "")["kind"], "edit");
+  ASSERT_TRUE(s.app->jobs().wait_idle(60));
+  st = s.get_json("/api/status");
+  EXPECT_EQ(st["history"]["cursor"].get<size_t>(), 2u);
+  EXPECT_EQ(st["edit"]["gaussians"].get<size_t>(), d.bundle.gaussians.size() - selected);
+  EXPECT_TRUE(st["history"]["can_redo"].get<bool>());
+  s.post_json("/api/undo", "");
+  s.post_json("/api/select/clear", "{}");
+  st = s.get_json("/api/status");
+  ASSERT_EQ(st["history"]["entries"].size(), 2u) << st["history"].dump();
+  EXPECT_EQ(st["history"]["entries"][1]["kind"], "select");
+  EXPECT_FALSE(st["history"]["can_redo"].get<bool>());
+  s.post_json("/api/redo", "", 409);
+  ASSERT_TRUE(s.app->jobs().wait_idle(60));
   s.post_json("/api/settings", R"({"tau": 1.5})", 400);
   s.post_json("/api/settings", R"({"views": "nope"})", 400);
   s.post_json("/api/click", R"({"view": 0, "x": 0.5})", 400);

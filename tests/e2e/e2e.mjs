@@ -175,6 +175,27 @@ try {
   await page.waitForSelector(`body[data-gaussians="${total - selected}"]`, { timeout: 20000 });
   check(true, 'undo/redo of the removal');
 
+  // One history: Ctrl+Z walks back across the edit and then the click (to the start),
+  // Ctrl+Shift+Z forward again; the panel lists the steps with the current position.
+  check(await page.getAttribute('body', 'data-history-steps') === '2' && await page.getAttribute('body', 'data-history-cursor') === '2',
+    'the history lists the click and the removal');
+  await page.keyboard.press('Control+z');
+  await page.waitForSelector(`body[data-gaussians="${total}"][data-history-cursor="1"]`, { timeout: 20000 });
+  await page.keyboard.press('Control+z');
+  await page.waitForSelector('body[data-history-cursor="0"][data-selected="0"]', { timeout: 20000 });
+  await page.waitForSelector('body[data-clicks="0"][data-busy="false"]', { timeout: 30000 });
+  const listed = await page.$$eval('#history-list li', (e) => e.map((li) => li.className));
+  check(listed.length === 3 && listed[0].includes('current') && listed[1].includes('undone') && listed[2].includes('undone'),
+    `Ctrl+Z twice walks back across the edit and the click to the start (${listed.join(' | ')})`);
+  await page.screenshot({ path: path.join(shots, '04b-history-undone.png') });
+  await page.keyboard.press('Control+Shift+z');
+  await page.waitForSelector(`body[data-history-cursor="1"][data-selected="${selected}"]`, { timeout: 20000 });
+  await page.waitForSelector('body[data-clicks="1"][data-busy="false"]', { timeout: 60000 });
+  await page.keyboard.press('Control+Shift+z');
+  await page.waitForSelector(`body[data-history-cursor="2"][data-gaussians="${total - selected}"]`, { timeout: 20000 });
+  check(true, 'Ctrl+Shift+Z redoes the click and the removal');
+  await page.waitForSelector('body[data-busy="false"]', { timeout: 30000 });
+
   // Export: download and on the server.
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#btn-download-ply')]);
   const downloaded = path.join(work, 'downloaded.ply');
@@ -198,6 +219,15 @@ try {
   await page.waitForSelector('#view-img[data-key^="f"]');
   await page.waitForTimeout(300);
   await page.screenshot({ path: path.join(shots, '05-free-camera.png') });
+  // Orbit a little, then "Nearest view" returns to the training camera it started from.
+  const vb = await (await page.$('#view-img')).boundingBox();
+  await page.mouse.move(vb.x + vb.width / 2, vb.y + vb.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(vb.x + vb.width / 2 + 12, vb.y + vb.height / 2, { steps: 3 });
+  await page.mouse.up();
+  await page.click('#btn-nearest');
+  await page.waitForSelector(`#view-img[data-key="v${fx.camera}"]`, { timeout: 10000 });
+  check(true, 'Nearest view returns from the free camera to the nearest training camera');
   check(pageErrors.length === 0, `no errors in the page${pageErrors.length ? ': ' + pageErrors.join(' | ') : ''}`);
   log(`passed in ${((Date.now() - t0) / 1000).toFixed(1)} s; screenshots in ${shots}`);
   await context.close();

@@ -62,6 +62,15 @@ async function click(target) {
   if (!ok) { marks = marks.filter((m) => m !== mark); viewer.setMarks(marks); }
 }
 
+// The history walked over a click: its mark goes (undo) or comes back (redo) at once; the
+// job brings the segmentation's evidence in line.
+function clickWalked(dir, job) {
+  if (dir === 'undo') { const m = marks.pop(); if (m) redoMarks.push(m); }
+  else { const m = redoMarks.pop(); if (m) marks.push(m); }
+  viewer.setMarks(marks);
+  if (job) api.waitJob(job).catch((e) => showError(`${dir} click: ${e.message || e}`)).finally(() => poll(true));
+}
+
 function setBanner(kind, text, progress) {
   const b = $('banner');
   if (!kind) { b.classList.add('hidden'); return; }
@@ -158,7 +167,15 @@ function populateCameras() {
   $('btn-next').addEventListener('click', () => step(1));
   $('btn-orbit').addEventListener('click', () => viewer.setFree(!viewer.free));
   $('btn-hd').addEventListener('click', () => viewer.render('full'));
+  $('btn-nearest').addEventListener('click', nearest);
   return step;
+}
+
+// Leaves the free camera for the training camera nearest to it.
+function nearest() {
+  const i = viewer.free ? viewer.nearestCamera() : viewer.cameraIndex;
+  $('camera-select').value = String(i);
+  viewer.setCamera(i);
 }
 
 function bindKeys(step) {
@@ -168,14 +185,15 @@ function bindKeys(step) {
     const k = e.key;
     const ctrl = e.ctrlKey || e.metaKey;
     let handled = true;
-    if (ctrl && (k === 'z' || k === 'Z')) (e.shiftKey ? panels.redoEdit() : panels.undoEdit());
-    else if (ctrl && (k === 'y' || k === 'Y')) panels.redoEdit();
+    if (ctrl && (k === 'z' || k === 'Z')) (e.shiftKey ? panels.redo() : panels.undo());
+    else if (ctrl && (k === 'y' || k === 'Y')) panels.redo();
     else if (ctrl) handled = false;
-    else if (k === 'z') panels.undoClick();
-    else if (k === 'Z') panels.redoClick();
+    else if (k === 'z') panels.undo();
+    else if (k === 'Z') panels.redo();
     else if (k === 'ArrowLeft') step(-1);
     else if (k === 'ArrowRight') step(1);
     else if (k === 'o' || k === 'O') viewer.setFree(!viewer.free);
+    else if (k === 'n' || k === 'N') nearest();
     else if (k === 'h' || k === 'H') viewer.render('full');
     else if (k === 'Delete' || k === 'Backspace') { if (status && status.edit.selected > 0) panels.edit('remove'); }
     else if (k === 'i' || k === 'I') panels.select('invert');
@@ -204,10 +222,10 @@ async function main() {
   viewer = new Viewer({
     stage: $('stage'), frame: $('frame'), img: $('view-img'), canvas: $('view-marks'), caption: $('view-caption'), scene,
     onClick: click, onError: showError,
-    onModeChange: () => { $('btn-orbit').classList.toggle('on', viewer.free); if (status) strip.update(status.segmentation, viewer.free ? -1 : viewer.cameraIndex); },
+    onModeChange: () => { $('btn-orbit').classList.toggle('on', viewer.free); $('btn-nearest').disabled = !viewer.free; if (status) strip.update(status.segmentation, viewer.free ? -1 : viewer.cameraIndex); },
   });
   strip = new Strip($('strip'), (cam) => { $('camera-select').value = String(cam); viewer.setCamera(cam); });
-  panels = new Panels({ api, run, runJob, scene });
+  panels = new Panels({ api, run, runJob, scene, onClickWalked: clickWalked });
   const step = populateCameras();
   bindKeys(step);
   viewer.fit();

@@ -16,10 +16,14 @@ export class Orbit {
     this.target = [0, 0, 0]; this.distance = 1; this.yaw = 0; this.pitch = 0; this.fov = 60;
   }
 
-  // Takes a training camera's pose; the target is where its axis passes the scene centre.
-  fromCamera(cam, sceneCenter) {
+  // Takes a training camera's pose; the target is where its axis passes the pivot (the
+  // robust centre). When the pivot is behind or beside the camera, `fallback` (the
+  // server's orbit distance) sets how far ahead the target is.
+  fromCamera(cam, sceneCenter, fallback = 0) {
     const f = norm(cam.forward);
-    const d = Math.max(dot(sub(sceneCenter, cam.center), f), 1e-3 * Math.hypot(...sub(sceneCenter, cam.center)) + 1e-6);
+    const along = dot(sub(sceneCenter, cam.center), f);
+    const d = along > 0.1 * fallback && along > 0 ? along
+      : fallback > 0 ? fallback : Math.max(along, 1e-3 * Math.hypot(...sub(sceneCenter, cam.center)) + 1e-6);
     this.target = add(cam.center, mul(f, d));
     this.distance = d;
     const off = norm(sub(cam.center, this.target));

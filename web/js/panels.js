@@ -8,8 +8,8 @@ const writeVec = (name, v) => vec(name).forEach((i, k) => { i.value = Number(v[k
 export function scaleFactor() { return Math.exp(Number($('scale').value)); }
 
 export class Panels {
-  constructor({ api, run, runJob, scene }) {
-    Object.assign(this, { api, run, runJob, scene });
+  constructor({ api, run, runJob, scene, onClickWalked }) {
+    Object.assign(this, { api, run, runJob, scene, onClickWalked: onClickWalked || (() => {}) });
     this.selMode = 'replace';
     this.bind();
   }
@@ -23,8 +23,8 @@ export class Panels {
     $('tau').addEventListener('input', () => { $('tau-out').textContent = Number($('tau').value).toFixed(2); });
     $('btn-settings').addEventListener('click', () => runJob('applying settings', () => api.post('/api/settings', {
       tau: Number($('tau').value), views: $('views').value, mode: $('mode').value, inspection: $('inspection').checked })));
-    $('btn-undo-click').addEventListener('click', () => this.undoClick());
-    $('btn-redo-click').addEventListener('click', () => this.redoClick());
+    $('btn-undo').addEventListener('click', () => this.undo());
+    $('btn-redo').addEventListener('click', () => this.redo());
 
     for (const b of document.querySelectorAll('#sel-mode button')) {
       b.addEventListener('click', () => {
@@ -53,8 +53,6 @@ export class Panels {
     $('btn-move').addEventListener('click', () => this.edit('transform', this.transform()));
     $('btn-extract').addEventListener('click', () => this.edit('extract'));
     $('btn-combine').addEventListener('click', () => this.edit('combine', { path: $('combine-path').value.trim(), ...this.transform() }));
-    $('btn-undo-edit').addEventListener('click', () => this.undoEdit());
-    $('btn-redo-edit').addEventListener('click', () => this.redoEdit());
 
     $('btn-download-ply').addEventListener('click', () => this.download('ply'));
     $('btn-download-splat').addEventListener('click', () => this.download('splat'));
@@ -72,10 +70,52 @@ export class Panels {
       return r.label + (r.notes && r.notes.length ? ` (${r.notes.join('; ')})` : '');
     });
   }
-  undoEdit() { return this.run(async () => `undo: ${(await this.api.post('/api/edit/undo')).label}`); }
-  redoEdit() { return this.run(async () => `redo: ${(await this.api.post('/api/edit/redo')).label}`); }
-  undoClick() { return this.runJob('undoing the click', () => this.api.post('/api/click/undo'), 'undo'); }
-  redoClick() { return this.runJob('redoing the click', () => this.api.post('/api/click/redo'), 'redo'); }
+  // One history of clicks, selections and edits (POST /api/undo, /api/redo).
+  undo() { return this.walk('undo'); }
+  redo() { return this.walk('redo'); }
+  walk(dir) {
+    return this.run(async () => {
+      const r = await this.api.post(`/api/${dir}`);
+      if (r.kind === 'click') this.onClickWalked(dir, r.job);
+      return `${dir}: ${r.label}`;
+    });
+  }
+
+  // The history list: "start", then every step; the current one highlighted, the undone
+  // ones dimmed.
+  showHistory(h) {
+    if (!h) return;
+    $('btn-undo').disabled = !h.can_undo;
+    $('btn-redo').disabled = !h.can_redo;
+    document.body.dataset.historyCursor = String(h.cursor);
+    document.body.dataset.historySteps = String(h.entries.length);
+    $('history-info').textContent = `step ${h.cursor} of ${h.entries.length}`;
+    const key = JSON.stringify(h);
+    if (key === this.historyKey) return;
+    this.historyKey = key;
+    const list = $('history-list');
+    const items = [{ kind: 'start', label: 'start' }, ...h.entries].map((e, i) => {
+      const li = document.createElement('li');
+      li.className = `${e.kind}${i === h.cursor ? ' current' : ''}${i > h.cursor ? ' undone' : ''}`;
+      if (e.kind === 'start') li.textContent = 'start (as loaded)';
+      else {
+        const k = document.createElement('span');
+        k.className = 'k'; k.textContent = e.kind;
+        li.append(k, document.createTextNode(e.label));
+      }
+      li.title = e.label;
+      return li;
+    });
+    list.replaceChildren(...items);
+    const cur = list.children[h.cursor];
+    // Keep the current step in view by scrolling the list only (scrollIntoView would
+    // scroll the whole panel too).
+    if (cur) {
+      const top = cur.offsetTop, bottom = top + cur.offsetHeight;
+      if (top < list.scrollTop) list.scrollTop = top;
+      else if (bottom > list.scrollTop + list.clientHeight) list.scrollTop = bottom - list.clientHeight;
+    }
+  }
 
   download(format) {
     const a = document.createElement('a');
@@ -89,14 +129,10 @@ export class Panels {
     const seg = status.segmentation, ed = status.edit;
     const segReady = seg.state === 'ready';
     const has = ed.selected > 0;
-    $('btn-undo-click').disabled = !seg.can_undo;
-    $('btn-redo-click').disabled = !seg.can_redo;
     $('btn-settings').disabled = !(segReady || seg.state === 'preparing');
     for (const id of ['btn-remove', 'btn-extract', 'btn-colorize', 'btn-scale', 'btn-copy', 'btn-move']) $(id).disabled = !has;
     $('btn-invert').disabled = false;
-    $('btn-undo-edit').disabled = !ed.can_undo;
-    $('btn-redo-edit').disabled = !ed.can_redo;
-    $('history-info').textContent = `${ed.undo_steps} step(s) · ${ed.redo_steps} to redo`;
+    this.showHistory(status.history);
     if (!this.settingsShown && seg.settings) {
       this.settingsShown = true;
       $('tau').value = seg.settings.tau; $('tau-out').textContent = Number(seg.settings.tau).toFixed(2);

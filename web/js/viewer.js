@@ -9,8 +9,11 @@ export class Viewer {
     this.cameraIndex = 0;
     this.free = false;
     this.orbit = new Orbit(scene.up);
+    // The orbit pivot: the centre of the robust (percentile) bounds from /api/scene, not
+    // of the bounding box, which far outlier Gaussians make huge.
     const lo = scene.bounds.lo, hi = scene.bounds.hi;
-    this.sceneCenter = lo.map((v, i) => (v + hi[i]) / 2);
+    this.sceneCenter = scene.pivot || lo.map((v, i) => (v + hi[i]) / 2);
+    this.orbitDistance = scene.orbit_distance || 0;
     this.inFlight = false;
     this.queued = null;
     this.shown = null;
@@ -49,11 +52,26 @@ export class Viewer {
 
   setFree(on) {
     if (on === this.free) return;
-    if (on) this.orbit.fromCamera(this.scene.cameras[this.cameraIndex], this.sceneCenter);
+    if (on) this.orbit.fromCamera(this.scene.cameras[this.cameraIndex], this.sceneCenter, this.orbitDistance);
     this.free = on;
     this.onModeChange?.();
     this.fit();
     this.render();
+  }
+
+  // The training camera nearest the free camera (position, then viewing direction).
+  nearestCamera() {
+    const eye = this.orbit.eye(), t = this.orbit.target;
+    const f = t.map((v, i) => v - eye[i]), fl = Math.hypot(...f) || 1;
+    let best = this.cameraIndex, bestScore = Infinity;
+    const scale = Math.max(this.orbit.distance, 1e-6);
+    this.scene.cameras.forEach((c, i) => {
+      const d = Math.hypot(...c.center.map((v, k) => v - eye[k])) / scale;
+      const cos = c.forward.reduce((a, v, k) => a + v * f[k], 0) / fl;
+      const score = d + (1 - cos);
+      if (score < bestScore) { bestScore = score; best = i; }
+    });
+    return best;
   }
 
   // Builds the render URL for the current camera; `quality`: 'fast' | 'preview' | 'full'.
