@@ -117,12 +117,41 @@ Agreement agreement(const Image& mask, const Image& coverage) {
   return a;
 }
 
-Image selection_values_coverage(const SegmentView& view, const std::vector<float>& values, int threads) {
+// Tiles the selection can reach in a view: the bounding box of its Gaussians' 3-sigma
+// extents (largest axis) around their projected centres. A coverage render needs no others.
+std::vector<uint8_t> selection_tiles(const GaussianScene& scene, const SegmentView& view, const std::vector<float>& values) {
+  const Camera& c = view.camera;
+  double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30;
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (values[i] <= 0) continue;
+    const Vec3 p = c.world_to_camera({scene.positions[3 * i], scene.positions[3 * i + 1], scene.positions[3 * i + 2]});
+    if (p.z <= 0.2) continue;  // the rasteriser's near plane culls it
+    const double s = std::exp(std::max({scene.scales[3 * i], scene.scales[3 * i + 1], scene.scales[3 * i + 2]}));
+    const double u = c.fx * p.x / p.z + c.cx, v = c.fy * p.y / p.z + c.cy;
+    const double r = 3 * s * std::max(c.fx, c.fy) / p.z + 2;
+    x0 = std::min(x0, u - r);
+    y0 = std::min(y0, v - r);
+    x1 = std::max(x1, u + r);
+    y1 = std::max(y1, v + r);
+  }
+  const int gx = view.frame.grid_x, gy = view.frame.grid_y;
+  std::vector<uint8_t> tiles(size_t(gx) * gy, 0);
+  if (x1 < 0 || y1 < 0 || x0 >= c.width || y0 >= c.height) return tiles;
+  const int tx0 = std::clamp(int(std::floor(x0 / kTileSize)), 0, gx - 1), tx1 = std::clamp(int(x1 / kTileSize), 0, gx - 1);
+  const int ty0 = std::clamp(int(std::floor(y0 / kTileSize)), 0, gy - 1), ty1 = std::clamp(int(y1 / kTileSize), 0, gy - 1);
+  for (int ty = ty0; ty <= ty1; ++ty)
+    for (int tx = tx0; tx <= tx1; ++tx) tiles[size_t(ty) * gx + tx] = 1;
+  return tiles;
+}
+
+Image selection_values_coverage(const GaussianScene& scene, const SegmentView& view, const std::vector<float>& values,
+                                int threads) {
   RenderSettings rs;
   rs.color = false;
   rs.depth = false;
   rs.threads = threads;
-  return rasterize(view.frame, rs, &values).value;
+  const std::vector<uint8_t> tiles = selection_tiles(scene, view, values);
+  return rasterize(view.frame, rs, &values, nullptr, &tiles).value;
 }
 
 std::vector<float> as_values(const std::vector<bool>& sel) {
@@ -372,7 +401,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       current = acc.select(o.tau, o.min_total_weight);
       const std::vector<float> values = as_values(current);
       if (several) {  // the coverage decides the candidate, then the candidate's votes
-        coverage = selection_values_coverage(views_[k], values, o.threads);
+        coverage = selection_values_coverage(scene_, views_[k], values, o.threads);
         take_candidate(vs, r, choose(r, &coverage, o.min_coverage_pixels));
       } else {  // one pass over the mask's tiles gives the selection's coverage and the mask's votes
         take_candidate(vs, r, r.mask_index);
@@ -432,7 +461,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     for (size_t k : order) {
       ViewState& vs = fresh[k];
       if (vs.status != ViewStatus::NoClicks && !(vs.from_selection && vs.status == ViewStatus::NoOverlap)) continue;
-      Image cov = selection_values_coverage(views_[k], values, o.threads);
+      Image cov = selection_values_coverage(scene_, views_[k], values, o.threads);
       int covered = 0;
       for (float v : cov.data) covered += v > 0.5f;
       std::vector<models::Click> prompt;
