@@ -11,7 +11,9 @@ namespace isegman::app {
 
 const char* const kSegmentOptionsHelp =
     "  --mode hybrid|epipolar|depth  click propagation (default hybrid)\n"
-    "  --views all|P%|ID,ID...       views that vote (default all; the clicked view is always in)\n"
+    "  --views auto[:K]|all|P%|ID,ID...  views that vote; the clicked view is always in. auto (the\n"
+    "                                default): every camera when there are at most K (20), else the\n"
+    "                                K that see the clicked point, spread around it\n"
     "  --tau T                       select Gaussians with positive vote share > T (default 0.8)\n"
     "  --min-weight W                ignore Gaussians with less total blending weight (default 0.05)\n"
     "  --no-inspection               let every view's mask vote (no IIM)\n"
@@ -51,7 +53,7 @@ std::string default_cache_dir() {
 SegmentSetup parse_segment_setup(const Args& args) {
   SegmentSetup s;
   s.session.propagation.mode = segment::parse_mode(args.get("mode", "hybrid"));
-  s.views_spec = args.get("views", "all");
+  s.views_spec = args.get("views", "auto");
   s.session.tau = args.get_double("tau", 0.8);
   if (!(s.session.tau >= 0 && s.session.tau < 1)) throw Error("--tau must be in [0, 1)");
   s.session.min_total_weight = args.get_double("min-weight", 0.05);

@@ -16,7 +16,7 @@ namespace isegman::app {
 struct SegmentSetup {
   segment::SessionOptions session;
   segment::ViewOptions views;
-  std::string views_spec = "all";
+  std::string views_spec = "auto";  // every camera up to 20, else 20 chosen for the click
   std::string sam_dir;
 };
 

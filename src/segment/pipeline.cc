@@ -1,8 +1,11 @@
 #include "segment/pipeline.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 
 #include "core/error.h"
+#include "segment/view_selection.h"
 
 namespace isegman::segment {
 
@@ -27,9 +30,36 @@ std::unique_ptr<Session> segment_from_prompts(const SceneBundle& b, int camera_i
       throw Error("click (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ") lies outside camera '" +
                   cam.name + "' (" + std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
   auto t0 = std::chrono::steady_clock::now();
-  std::vector<int> chosen = sample_views(b.cameras, views_spec, camera_index);
-  std::vector<SegmentView> views = build_views(b, chosen, *sam, vo, progress);
   PipelineTimings t;
+  std::vector<SegmentView> views;
+  int auto_k = 0;
+  if (parse_auto_views(views_spec, auto_k) && int(b.cameras.size()) > auto_k) {
+    // Voting-view selection: build the clicked view first, take the surface point under
+    // the first click from its expected depth, and choose the views that see it.
+    views = build_views(b, {camera_index}, *sam, vo, progress, &t.ms_embedding);
+    auto ts = std::chrono::steady_clock::now();
+    const SegmentView& cv = views.front();
+    const Click first = rescaled(clicks.front(), cam.width, cam.height, cv.camera.width, cv.camera.height);
+    Vec3 X;
+    const bool surface = surface_point(cv, first.x, first.y, so.propagation.min_alpha, X);
+    std::vector<int> chosen = surface ? select_views_for_point(b.cameras, camera_index, X, auto_k)
+                                      : spread_views(b.cameras, camera_index, auto_k);
+    t.ms_selection = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - ts).count();
+    if (progress) {
+      char line[256];
+      std::snprintf(line, sizeof line, "auto views: %zu of %zu cameras %s", chosen.size(), b.cameras.size(),
+                    surface ? "see the clicked point, spread around it" : "spread over the scene (no surface under the click)");
+      progress(line);
+    }
+    chosen.erase(std::remove(chosen.begin(), chosen.end(), camera_index), chosen.end());
+    std::vector<SegmentView> rest = build_views(b, chosen, *sam, vo, progress, &t.ms_embedding);
+    for (SegmentView& v : rest) views.push_back(std::move(v));
+    std::sort(views.begin(), views.end(),
+              [](const SegmentView& a, const SegmentView& c) { return a.camera_index < c.camera_index; });
+  } else {
+    std::vector<int> chosen = sample_views(b.cameras, views_spec, camera_index);
+    views = build_views(b, chosen, *sam, vo, progress, &t.ms_embedding);
+  }
   t.views = int(views.size());
   t.ms_views = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   auto session = std::make_unique<Session>(b.gaussians, std::move(views), std::move(sam), so);

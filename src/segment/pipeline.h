@@ -13,11 +13,17 @@ namespace isegman::segment {
 
 struct PipelineTimings {
   double ms_views = 0, ms_propagation = 0, ms_sam = 0, ms_voting = 0;
+  double ms_embedding = 0;  // part of ms_views: SAM encoding (0 when cached)
+  double ms_selection = 0;  // part of ms_views: choosing the "auto" views
   int views = 0, rounds = 0;
   double ms_interaction() const { return ms_propagation + ms_sam + ms_voting; }
 };
 
-// The clicked camera is always among the views. Returns the session after the last click.
+// The clicked camera is always among the views. With views_spec "auto" / "auto:K" and more
+// than K cameras, the views are chosen for the first click (view_selection.h): the
+// clicked view is built first and the surface point under the click picks the K views
+// that see it, spread around it (all cameras spread when no surface is under the click).
+// Returns the session after the last click.
 std::unique_ptr<Session> segment_from_prompts(const SceneBundle& bundle, int camera_index,
                                               const std::vector<Click>& clicks,
                                               std::shared_ptr<const models::SamModel> sam,

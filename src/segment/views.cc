@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "io/image_io.h"
+#include "segment/view_selection.h"
 
 namespace isegman::segment {
 
@@ -16,7 +17,16 @@ std::vector<int> sample_views(const std::vector<Camera>& cameras, const std::str
   const int n = int(cameras.size());
   if (n == 0) throw Error("the scene has no cameras to segment in");
   std::set<int> chosen;
-  if (spec.empty() || spec == "all" || spec == "100%") {
+  int auto_k = 0;
+  if (parse_auto_views(spec, auto_k)) {
+    // No click point here: spread over all cameras (segment_from_prompts chooses by the
+    // clicked surface point instead).
+    if (n <= auto_k) {
+      for (int i = 0; i < n; ++i) chosen.insert(i);
+    } else {
+      for (int i : spread_views(cameras, must_include, auto_k)) chosen.insert(i);
+    }
+  } else if (spec.empty() || spec == "all" || spec == "100%") {
     for (int i = 0; i < n; ++i) chosen.insert(i);
   } else if (spec.back() == '%') {
     char* end = nullptr;
@@ -74,7 +84,8 @@ SegmentView build_view(const GaussianScene& scene, const Camera& camera, int cam
 }
 
 std::vector<SegmentView> build_views(const SceneBundle& b, const std::vector<int>& indices,
-                                     const models::SamModel& sam, const ViewOptions& opt, const Progress& progress) {
+                                     const models::SamModel& sam, const ViewOptions& opt, const Progress& progress,
+                                     double* ms_embedding) {
   std::vector<SegmentView> views;
   views.reserve(indices.size());
   for (size_t k = 0; k < indices.size(); ++k) {
@@ -82,6 +93,7 @@ std::vector<SegmentView> build_views(const SceneBundle& b, const std::vector<int
     auto t0 = std::chrono::steady_clock::now();
     models::SamTimings t;
     views.push_back(build_view(b.gaussians, cam, indices[k], sam, opt, &t));
+    if (ms_embedding) *ms_embedding += t.preprocess_ms + t.encoder_ms;
     if (progress) {
       char line[256];
       std::snprintf(line, sizeof line, "view %zu/%zu %s: %.0f ms (%s)", k + 1, indices.size(), cam.name.c_str(),

@@ -38,7 +38,10 @@ struct ViewOptions {
 };
 
 // Parses a view sampling spec against `count` cameras: "all", "25%" (spread uniformly
-// along the list, always including `must_include`), or a comma list of ids or names.
+// along the list), "auto" / "auto:K" (every camera when there are at most K, default 20;
+// otherwise K cameras spread over the scene: segment_from_prompts chooses them by the
+// clicked surface point, see view_selection.h), or a comma list of ids or names.
+// `must_include` is always in.
 std::vector<int> sample_views(const std::vector<Camera>& cameras, const std::string& spec, int must_include = -1);
 
 using Progress = std::function<void(const std::string& line)>;
@@ -47,9 +50,10 @@ using Progress = std::function<void(const std::string& line)>;
 SegmentView build_view(const GaussianScene& scene, const Camera& camera, int camera_index,
                        const models::SamModel& sam, const ViewOptions& options, models::SamTimings* timings = nullptr);
 
-// Builds the listed cameras' views, reporting progress per view.
+// Builds the listed cameras' views, reporting progress per view; adds the SAM
+// preprocessing + encoder time (0 for cached embeddings) to *ms_embedding.
 std::vector<SegmentView> build_views(const SceneBundle& bundle, const std::vector<int>& camera_indices,
                                      const models::SamModel& sam, const ViewOptions& options,
-                                     const Progress& progress = nullptr);
+                                     const Progress& progress = nullptr, double* ms_embedding = nullptr);
 
 }  // namespace isegman::segment
