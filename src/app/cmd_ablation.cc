@@ -33,27 +33,6 @@ struct Config {
   std::string views;
 };
 
-// Mean IoU / accuracy of a selection against the true object over every camera where
-// the object covers at least 50 pixels.
-void score_selection(const DemoScene& demo, const std::vector<bool>& truth, const std::vector<bool>& selection,
-                     double& iou, double& acc) {
-  iou = acc = 0;
-  int n = 0;
-  for (const Camera& cam : demo.bundle.cameras) {
-    const Image gt = segment::selection_mask(demo.bundle.gaussians, cam, truth, cam.width, cam.height);
-    if (std::count(gt.data.begin(), gt.data.end(), 1.f) < 50) continue;
-    const segment::MaskScore sc =
-        segment::score_mask(segment::selection_mask(demo.bundle.gaussians, cam, selection, cam.width, cam.height), gt);
-    iou += sc.iou;
-    acc += sc.accuracy;
-    ++n;
-  }
-  if (n) {
-    iou /= n;
-    acc /= n;
-  }
-}
-
 struct EvalConfig {
   std::string label;
   std::function<void(segment::SessionOptions&)> apply;
@@ -150,8 +129,9 @@ int run_eval_ablation(const Args& args) {
       segment::PipelineTimings tm;
       const Click c = pixel_centre_click(t->x, t->y, 1);
       auto session = segment::segment_from_prompts(s->scene.bundle, t->camera, {c}, sam, so, setup.views, "all", &tm);
-      double iou, acc;
-      score_selection(s->scene, demo_object_mask(s->scene, t->object), session->selection(), iou, acc);
+      const segment::MaskScore sc = segment::score_selection(
+          s->scene.bundle.gaussians, s->scene.bundle.cameras, demo_object_mask(s->scene, t->object), session->selection());
+      const double iou = sc.iou, acc = sc.accuracy;
       per.push_back(iou);
       miou += iou;
       macc += acc;
@@ -228,21 +208,11 @@ int run_ablation(const std::vector<std::string>& argv) {
       segment::PipelineTimings t;
       auto s = segment::segment_from_prompts(demo.bundle, clicks[o].first, {clicks[o].second}, sam, so, setup.views,
                                              cfg.views, &t);
-      const std::vector<bool> truth = demo_object_mask(demo, int(o));
-      double iou = 0, acc = 0;
-      int n = 0;
-      for (const Camera& cam : demo.bundle.cameras) {
-        const Image gt = segment::selection_mask(demo.bundle.gaussians, cam, truth, cam.width, cam.height);
-        if (std::count(gt.data.begin(), gt.data.end(), 1.f) < 50) continue;
-        const segment::MaskScore sc = segment::score_mask(
-            segment::selection_mask(demo.bundle.gaussians, cam, s->selection(), cam.width, cam.height), gt);
-        iou += sc.iou;
-        acc += sc.accuracy;
-        ++n;
-      }
-      per.push_back(n ? iou / n : 0);
-      miou += per.back();
-      macc += n ? acc / n : 0;
+      const segment::MaskScore sc = segment::score_selection(demo.bundle.gaussians, demo.bundle.cameras,
+                                                             demo_object_mask(demo, int(o)), s->selection());
+      per.push_back(sc.iou);
+      miou += sc.iou;
+      macc += sc.accuracy;
       ms += t.ms_interaction();
     }
     const double k = double(demo.objects.size());

@@ -92,6 +92,25 @@ MaskScore score_mask(const Image& pred, const Image& truth) {
   return s;
 }
 
+MaskScore score_selection(const GaussianScene& scene, const std::vector<Camera>& cameras,
+                          const std::vector<bool>& truth, const std::vector<bool>& selection, int min_pixels) {
+  MaskScore mean;
+  int n = 0;
+  for (const Camera& cam : cameras) {
+    const Image gt = selection_mask(scene, cam, truth, cam.width, cam.height);
+    if (std::count(gt.data.begin(), gt.data.end(), 1.f) < min_pixels) continue;
+    const MaskScore s = score_mask(selection_mask(scene, cam, selection, cam.width, cam.height), gt);
+    mean.iou += s.iou;
+    mean.accuracy += s.accuracy;
+    ++n;
+  }
+  if (n) {
+    mean.iou /= n;
+    mean.accuracy /= n;
+  }
+  return mean;
+}
+
 Image selection_mask(const GaussianScene& scene, const Camera& camera, const std::vector<bool>& selection, int width,
                      int height, int threads) {
   const Camera c = (width == camera.width && height == camera.height) ? camera : camera.resized(width, height);

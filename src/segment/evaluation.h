@@ -43,6 +43,12 @@ MaskScore score_mask(const Image& predicted, const Image& truth);
 Image selection_mask(const GaussianScene& scene, const Camera& camera, const std::vector<bool>& selection, int width,
                      int height, int threads = 0);
 
+// A selection against the true one (both per Gaussian), as the synthetic evaluations score
+// it: mean IoU and pixel accuracy of their rendered masks over the cameras where the truth
+// covers at least `min_pixels`.
+MaskScore score_selection(const GaussianScene& scene, const std::vector<Camera>& cameras,
+                          const std::vector<bool>& truth, const std::vector<bool>& selection, int min_pixels = 50);
+
 TaskResult evaluate_task(const EvalTask& task, std::shared_ptr<const models::SamModel> sam,
                          const SessionOptions& session_options, const ViewOptions& view_options,
                          const std::string& views_spec, const Progress& progress = nullptr);

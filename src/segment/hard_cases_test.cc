@@ -40,18 +40,6 @@ const EvalTaskSpec& task(const std::string& name, const EvalScene*& scene) {
   throw Error("no task " + name);
 }
 
-double mean_iou(const DemoScene& demo, const std::vector<bool>& truth, const std::vector<bool>& sel) {
-  double sum = 0;
-  int n = 0;
-  for (const Camera& cam : demo.bundle.cameras) {
-    const Image gt = selection_mask(demo.bundle.gaussians, cam, truth, cam.width, cam.height);
-    if (std::count(gt.data.begin(), gt.data.end(), 1.f) < 50) continue;
-    sum += score_mask(selection_mask(demo.bundle.gaussians, cam, sel, cam.width, cam.height), gt).iou;
-    ++n;
-  }
-  return n ? sum / n : 0;
-}
-
 struct Outcome {
   double iou = 0;
   size_t selected = 0, background = 0;  // selected Gaussians, of them not the target
@@ -71,7 +59,7 @@ Outcome run(const std::string& name, const SessionOptions& so, std::vector<Click
     o.selected += sel[i];
     o.background += sel[i] && !truth[i];
   }
-  o.iou = mean_iou(s->scene, truth, sel);
+  o.iou = score_selection(s->scene.bundle.gaussians, s->scene.bundle.cameras, truth, sel).iou;
   return o;
 }
 
