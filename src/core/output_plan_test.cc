@@ -9,24 +9,16 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/test_dirs.h"
 
 namespace fs = std::filesystem;
 
 namespace isegman {
 namespace {
 
-std::string temp_dir(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("isegman-plan-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p.string();
-}
+std::string temp_dir(const std::string& name) { return testing::fresh_temp_dir("isegman-plan-", name); }
 
-std::string nul_path(const std::string& d) {
-  std::string p = d + "/a";
-  p.push_back('\0');
-  return p + "b";
-}
+std::string nul_path(const std::string& d) { return testing::path_with_nul(d); }
 
 void touch(const std::string& p) { std::ofstream(p) << "x"; }
 

@@ -23,6 +23,7 @@
 #include "server/http_server.h"
 #include "server/origin_policy.h"
 #include "server/request_head.h"
+#include "core/test_dirs.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -30,12 +31,7 @@ using nlohmann::json;
 namespace isegman::server {
 namespace {
 
-std::string temp_dir(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("isegman-safety-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p.string();
-}
+std::string temp_dir(const std::string& name) { return testing::fresh_temp_dir("isegman-safety-", name); }
 
 DemoScene tiny_demo() {
   DemoSceneOptions o;

@@ -19,6 +19,7 @@
 #include "server/input_paths.h"
 #include "server/jobs.h"
 #include "server/output_paths.h"
+#include "core/test_dirs.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -26,12 +27,7 @@ using nlohmann::json;
 namespace isegman::server {
 namespace {
 
-std::string temp_dir(const std::string& name) {
-  fs::path p = fs::temp_directory_path() / ("isegman-server-test-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  fs::create_directories(p);
-  return p.string();
-}
+std::string temp_dir(const std::string& name) { return testing::fresh_temp_dir("isegman-server-test-", name); }
 
 DemoScene small_demo() {
   DemoSceneOptions o;
