@@ -342,7 +342,6 @@ RoundReport Session::run_round(State& next, const State& prev) {
     decode_views(which, prompts, previous, results);
     decode_views(which_neg, prompts_neg, std::vector<const std::vector<float>*>(which_neg.size(), nullptr), negatives);
   }
-  rep.views_segmented = segmented;
   rep.ms_sam = ms_since(t0);
 
   // 3. Inspection and voting: the latest clicked view first, then the others nearest
