@@ -56,6 +56,7 @@ int run_eval_ablation(const Args& args) {
          o.propagation.hidden_fallback = true;
        }},
       {"- depth layers", [](segment::SessionOptions& o) { o.depth_layers = false; }},
+      {"- local depth layers", [](segment::SessionOptions& o) { o.layer_options.region = 0; }},
       {"- agreement IIM", [](segment::SessionOptions& o) { o.agreement_inspection = false; }},
       {"- candidate choice", [](segment::SessionOptions& o) { o.choose_candidate = false; }},
       {"- selection prompts", [](segment::SessionOptions& o) { o.selection_prompt_rounds = 0; }},

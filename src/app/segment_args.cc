@@ -19,6 +19,7 @@ const char* const kSegmentOptionsHelp =
     "  --no-inspection               let every view's mask vote (no IIM)\n"
     "  --paper                       the paper's pipeline alone: none of the additions below\n"
     "  --no-depth-layers             let a mask vote for everything it shows, gaps included\n"
+    "  --global-depth-layers         depth layers over the whole mask instead of per region\n"
     "  --overlap-inspection          IIM accepts a mask that merely overlaps the selection\n"
     "  --no-candidate-choice         always take SAM's top-scored mask\n"
     "  --selection-prompts N         rounds prompting views no click reached (default 2, 0 = off)\n"
@@ -37,7 +38,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers",
                                           "no-candidate-choice", "hidden-fallback",
                                           "sam-negatives"};
   return f;
@@ -61,6 +62,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.inspection = !args.has("no-inspection");
   const bool paper = args.has("paper");
   s.session.depth_layers = !paper && !args.has("no-depth-layers");
+  if (args.has("global-depth-layers")) s.session.layer_options.region = 0;
   s.session.agreement_inspection = !paper && !args.has("overlap-inspection");
   s.session.choose_candidate = !paper && !args.has("no-candidate-choice");
   s.session.propagation.hidden_fallback = paper || args.has("hidden-fallback");

@@ -44,59 +44,161 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
   return layers;
 }
 
+namespace {
+
+int layer_of(const std::vector<DepthLayer>& layers, double z) {
+  for (size_t l = 0; l < layers.size(); ++l)
+    if (z >= layers[l].near && z <= layers[l].far) return int(l);
+  return -1;
+}
+
+// Per-region decision (see the header). keep[k] says whether mask entry k stays positive;
+// false when the selection has no weight in the mask (nothing to decide by).
+bool keep_local_layers(const Camera& camera, const std::vector<Vec3>& centre, const std::vector<float>& depth,
+                       const std::vector<double>& weight, const std::vector<char>& selected,
+                       const DepthLayerOptions& o, std::vector<char>& keep) {
+  const int R = o.region;
+  const int gx = std::max(1, (camera.width + R - 1) / R), gy = std::max(1, (camera.height + R - 1) / R);
+  std::vector<std::vector<size_t>> members(size_t(gx) * gy);
+  for (size_t k = 0; k < centre.size(); ++k) {
+    double u = 0, v = 0;
+    if (!camera.project(centre[k], u, v)) continue;  // behind the camera: no region, neutral
+    const int rx = std::clamp(int(std::floor(u / R)), 0, gx - 1), ry = std::clamp(int(std::floor(v / R)), 0, gy - 1);
+    members[size_t(ry) * gx + rx].push_back(k);
+  }
+  struct Range { double lo = 1e300, hi = -1e300; bool set() const { return hi >= lo; } };
+  std::vector<std::vector<DepthLayer>> layers(members.size());
+  std::vector<std::vector<int>> layer_index(members.size());
+  std::vector<Range> source(members.size());
+  std::vector<int> distance(members.size(), -1);
+  std::vector<size_t> wave;
+  keep.assign(centre.size(), 0);
+  for (size_t r = 0; r < members.size(); ++r) {
+    if (members[r].empty()) continue;
+    std::vector<float> z;
+    std::vector<double> w;
+    for (size_t k : members[r]) {
+      z.push_back(depth[k]);
+      w.push_back(weight[k]);
+    }
+    layers[r] = depth_layers(z, w, o);
+    std::vector<double> sel(layers[r].size(), 0.0), all(layers[r].size(), 0.0);
+    for (size_t k : members[r]) {
+      const int l = layer_of(layers[r], depth[k]);
+      layer_index[r].push_back(l);
+      if (l < 0) continue;
+      all[size_t(l)] += weight[k];
+      if (selected[k]) sel[size_t(l)] += weight[k];
+    }
+    // A layer only a few stray selected Gaussians reach (a leak) is not kept: a region
+    // none of whose layers is mostly selected is judged like a region the selection misses.
+    std::vector<char> kept_layer(layers[r].size(), 0);
+    for (size_t l = 0; l < sel.size(); ++l) {
+      if (!(all[l] > 0 && sel[l] >= o.keep_share * all[l])) continue;
+      kept_layer[l] = 1;
+      source[r].lo = std::min(source[r].lo, layers[r][l].near);
+      source[r].hi = std::max(source[r].hi, layers[r][l].far);
+    }
+    if (!source[r].set()) continue;
+    for (size_t i = 0; i < members[r].size(); ++i)
+      if (layer_index[r][i] >= 0 && kept_layer[size_t(layer_index[r][i])]) keep[members[r][i]] = 1;
+    distance[r] = 0;
+    wave.push_back(r);
+  }
+  if (wave.empty()) return false;
+  // Regions the selection does not reach take the kept depth range of the nearest regions
+  // it reaches (breadth-first over the grid, a wave at a time so the order cannot matter).
+  std::vector<Range> reference = source;
+  for (int d = 1; !wave.empty() && d <= o.reach; ++d) {
+    std::vector<size_t> next;
+    for (size_t r : wave) {
+      const int x = int(r % size_t(gx)), y = int(r / size_t(gx));
+      const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+      for (int i = 0; i < 4; ++i) {
+        if (nx[i] < 0 || ny[i] < 0 || nx[i] >= gx || ny[i] >= gy) continue;
+        const size_t n = size_t(ny[i]) * gx + size_t(nx[i]);
+        if (distance[n] >= 0 && distance[n] < d) continue;
+        if (distance[n] < 0) {
+          distance[n] = d;
+          next.push_back(n);
+        }
+        reference[n].lo = std::min(reference[n].lo, reference[r].lo);
+        reference[n].hi = std::max(reference[n].hi, reference[r].hi);
+      }
+    }
+    wave = std::move(next);
+  }
+  for (size_t r = 0; r < members.size(); ++r) {
+    if (members[r].empty() || source[r].set() || !reference[r].set()) continue;
+    const double lo = reference[r].lo * (1 - o.margin), hi = reference[r].hi * (1 + o.margin);
+    for (size_t i = 0; i < members[r].size(); ++i) {
+      const int l = layer_index[r][i];
+      if (l >= 0 && layers[r][size_t(l)].far >= lo && layers[r][size_t(l)].near <= hi) keep[members[r][i]] = 1;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewVotes& positive, ViewVotes& neutral,
                          const std::vector<double>& seed_depths, const std::vector<bool>* selection,
                          const DepthLayerOptions& o) {
   GateReport rep;
   neutral = ViewVotes{};
   const size_t n = positive.index.size();
+  std::vector<Vec3> centre(n);
   std::vector<float> depth(n);
   std::vector<double> weight(n);
+  std::vector<char> selected(n, 0);
   for (size_t k = 0; k < n; ++k) {
     const uint32_t g = positive.index[k];
-    const Vec3 p{scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]};
-    depth[k] = float(camera.world_to_camera(p).z);
+    centre[k] = Vec3{scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]};
+    depth[k] = float(camera.world_to_camera(centre[k]).z);
     weight[k] = double(positive.weight[k]);
+    if (selection) selected[k] = (*selection)[g];
   }
   const std::vector<DepthLayer> layers = depth_layers(depth, weight, o);
   rep.layers = int(layers.size());
-  if (layers.size() <= 1) {
-    if (!layers.empty()) rep.kept = layers[0];
-    return rep;
-  }
-  auto layer_of = [&](double z) {
-    for (size_t l = 0; l < layers.size(); ++l)
-      if (z >= layers[l].near && z <= layers[l].far) return int(l);
-    return -1;
-  };
-  int keep = -1;
-  if (selection) {  // the layer holding most of the selection seen through this mask
-    std::vector<double> selected(layers.size(), 0.0);
-    for (size_t k = 0; k < n; ++k) {
-      const int l = layer_of(depth[k]);
-      if (l >= 0 && (*selection)[positive.index[k]]) selected[size_t(l)] += weight[k];
+  std::vector<char> keep;
+  if (selection && o.region > 0 && keep_local_layers(camera, centre, depth, weight, selected, o, keep)) {
+    rep.local = true;
+  } else {
+    if (layers.size() <= 1) {
+      if (!layers.empty()) rep.kept = layers[0];
+      return rep;
     }
-    const auto best = std::max_element(selected.begin(), selected.end());
-    if (*best > 0) keep = int(best - selected.begin());
-  }
-  if (keep < 0) {  // the layer nearest to a seed depth
-    double best = 1e300;
-    for (double z : seed_depths)
-      for (size_t l = 0; l < layers.size(); ++l) {
-        const double dist = z < layers[l].near ? layers[l].near - z : z > layers[l].far ? z - layers[l].far : 0.0;
-        if (dist < best) {
-          best = dist;
-          keep = int(l);
-        }
+    int best_layer = -1;
+    if (selection) {  // the layer holding most of the selection seen through this mask
+      std::vector<double> sel(layers.size(), 0.0);
+      for (size_t k = 0; k < n; ++k) {
+        const int l = layer_of(layers, depth[k]);
+        if (l >= 0 && selected[k]) sel[size_t(l)] += weight[k];
       }
+      const auto best = std::max_element(sel.begin(), sel.end());
+      if (*best > 0) best_layer = int(best - sel.begin());
+    }
+    if (best_layer < 0) {  // the layer nearest to a seed depth
+      double best = 1e300;
+      for (double z : seed_depths)
+        for (size_t l = 0; l < layers.size(); ++l) {
+          const double dist = z < layers[l].near ? layers[l].near - z : z > layers[l].far ? z - layers[l].far : 0.0;
+          if (dist < best) {
+            best = dist;
+            best_layer = int(l);
+          }
+        }
+    }
+    if (best_layer < 0) return rep;  // nothing to decide by: keep every layer
+    rep.kept = layers[size_t(best_layer)];
+    keep.assign(n, 0);
+    for (size_t k = 0; k < n; ++k) keep[k] = layer_of(layers, depth[k]) == best_layer;
   }
-  if (keep < 0) return rep;  // nothing to decide by: keep every layer
-  rep.kept = layers[size_t(keep)];
   ViewVotes kept;
   double gated = 0, total = 0;
   for (size_t k = 0; k < n; ++k) {
     total += weight[k];
-    if (layer_of(depth[k]) == keep) {
+    if (keep[k]) {
       kept.index.push_back(positive.index[k]);
       kept.weight.push_back(positive.weight[k]);
     } else {

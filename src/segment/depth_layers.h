@@ -19,6 +19,14 @@ struct DepthLayerOptions {
   double bin = 0.01;          // histogram bin, relative depth (log scale)
   double min_gap = 0.04;      // empty depth range that separates layers, relative
   double empty_share = 0.002; // a bin with less of the mask's weight counts as empty
+  // Local layers (once a selection exists): the mask is cut into square regions of this
+  // many pixels and each region is layered on its own, because one surface seen at a slant
+  // (a wall, the ground) spans the whole depth range of the view and fills the gap a global
+  // histogram needs, while locally the trellis bar is always in front of the wall. 0: global.
+  int region = 32;
+  double keep_share = 0.3;    // a local layer is kept when this share of it is selected
+  double margin = 0.05;       // relative depth margin around the selection's local range
+  int reach = 2;              // regions farther than this from the selection's stay neutral
 };
 
 struct DepthLayer {
@@ -34,11 +42,15 @@ struct GateReport {
   int layers = 0;            // layers the mask's content splits into
   DepthLayer kept;           // the target's layer
   double gated_share = 0;    // share of the mask's weight made neutral
+  bool local = false;        // decided per region (local layers) rather than globally
 };
 
 // Keeps in `positive` only the Gaussians of the target's layer and moves the others into
-// `neutral`. The target's layer is the one holding most of `selection`'s weight when the
-// selection has weight in the mask, else the one nearest to any of `seed_depths`.
+// `neutral`. Without a selection seen through the mask (the first view), the target's
+// layer is the global layer nearest to any of `seed_depths`. With one, each region keeps
+// its local layers that hold the selection (the one holding most of it, and any that is
+// at least keep_share selected); a region the selection does not reach keeps the local
+// layers within the depth range (+- margin) kept in the nearest region it does reach.
 GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewVotes& positive, ViewVotes& neutral,
                          const std::vector<double>& seed_depths, const std::vector<bool>* selection,
                          const DepthLayerOptions& options = {});

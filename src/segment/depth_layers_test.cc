@@ -58,5 +58,56 @@ TEST(DepthLayers, GateKeepsTheSeededLayerAndMakesTheRestNeutral) {
   EXPECT_EQ(acc, VoteAccumulator(3));
 }
 
+TEST(DepthLayers, LocalLayersSeparateABarFromASlantedWallBehindIt) {
+  // A wall seen at a slant (depth 3.5 .. 4.5 across the view) with a bar 0.6 in front of
+  // it on the left half: the bar's and the wall's depths overlap over the view, so one
+  // histogram finds no gap, but in every 32-pixel region the bar is clearly in front.
+  GaussianScene scene;
+  std::vector<uint32_t> index;
+  std::vector<int64_t> weight;
+  std::vector<bool> selection;
+  enum Kind { SelectedBar, UnselectedBar, Wall };
+  std::vector<Kind> kind;
+  auto add = [&](double x, double z, Kind k) {
+    index.push_back(uint32_t(index.size()));
+    weight.push_back(100);
+    scene.positions.insert(scene.positions.end(), {float(x), 0.f, float(z)});
+    scene.opacity.push_back(0);
+    selection.push_back(k == SelectedBar);
+    kind.push_back(k);
+  };
+  for (int i = 0; i <= 200; ++i) {
+    const double x = -1 + 0.01 * i, wall = 4 + 0.5 * x;
+    add(x, wall, Wall);
+    if (x <= 0.1) add(x, wall - 0.6, x < -0.2 ? SelectedBar : UnselectedBar);
+  }
+  Camera cam = Camera::look_at({0, 0, 0}, {0, 0, 1}, {0, -1, 0}, 256, 256, 60);
+  ViewVotes global{index, weight}, local{index, weight}, neutral;
+  DepthLayerOptions global_options;
+  global_options.region = 0;
+  GateReport g = gate_by_depth(scene, cam, global, neutral, {3.0}, &selection, global_options);
+  EXPECT_EQ(g.layers, 1);  // one layer: everything votes, the wall too
+  EXPECT_EQ(global.index.size(), index.size());
+
+  GateReport r = gate_by_depth(scene, cam, local, neutral, {3.0}, &selection);
+  EXPECT_TRUE(r.local);
+  std::vector<bool> kept(index.size(), false);
+  for (uint32_t i : local.index) kept[i] = true;
+  int wall_kept = 0, selected_lost = 0, continuation_kept = 0, continuation = 0;
+  for (size_t i = 0; i < index.size(); ++i) {
+    if (kind[i] == Wall) wall_kept += kept[i];
+    if (kind[i] == SelectedBar) selected_lost += !kept[i];
+    if (kind[i] == UnselectedBar) {
+      ++continuation;
+      continuation_kept += kept[i];
+    }
+  }
+  EXPECT_EQ(wall_kept, 0);
+  EXPECT_EQ(selected_lost, 0);
+  // The bar's unselected continuation is in the selection's depth range next door: kept.
+  EXPECT_EQ(continuation_kept, continuation);
+  EXPECT_EQ(local.index.size() + neutral.index.size(), index.size());
+}
+
 }  // namespace
 }  // namespace isegman::segment
