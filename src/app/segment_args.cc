@@ -20,6 +20,7 @@ const char* const kSegmentOptionsHelp =
     "  --paper                       the paper's pipeline alone: none of the additions below\n"
     "  --no-depth-layers             let a mask vote for everything it shows, gaps included\n"
     "  --global-depth-layers         depth layers over the whole mask instead of per region\n"
+    "  --no-see-through              segment what a click sees through gaps as the render shows it\n"
     "  --overlap-inspection          IIM accepts a mask that merely overlaps the selection\n"
     "  --no-candidate-choice         always take SAM's top-scored mask\n"
     "  --selection-prompts N         rounds prompting views no click reached (default 2, 0 = off)\n"
@@ -38,7 +39,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through",
                                           "no-candidate-choice", "hidden-fallback",
                                           "sam-negatives"};
   return f;
@@ -63,6 +64,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   const bool paper = args.has("paper");
   s.session.depth_layers = !paper && !args.has("no-depth-layers");
   if (args.has("global-depth-layers")) s.session.layer_options.region = 0;
+  s.session.see_through = !paper && !args.has("no-see-through");
   s.session.agreement_inspection = !paper && !args.has("overlap-inspection");
   s.session.choose_candidate = !paper && !args.has("no-candidate-choice");
   s.session.propagation.hidden_fallback = paper || args.has("hidden-fallback");
@@ -77,6 +79,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   if (s.views.max_side < 64 || s.views.max_side > 8192) throw Error("--max-side must be between 64 and 8192");
   s.views.cache_dir = args.get("cache", default_cache_dir());
   s.sam_dir = args.get("sam", models::default_sam_dir());
+  s.session.see_through_views = s.views;
   return s;
 }
 

@@ -71,6 +71,7 @@ RoundReport Session::click(int view, const Click& c) {
     throw Error("click (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ") is outside view '" +
                 views_[size_t(view)].name + "' (" + std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
   if (c.label != 0 && c.label != 1) throw Error("click label must be 1 (positive) or 0 (negative)");
+  view = see_through_view(view, c);
   // The same click again (a double click, a repeated request) is not new information.
   for (const UserClick& old : state_.clicks)
     if (old.view == view && old.click.label == c.label && std::floor(old.click.x) == std::floor(c.x) &&
@@ -87,6 +88,26 @@ RoundReport Session::click(int view, const Click& c) {
   history_.push_back(std::move(state_));
   state_ = std::move(next);
   return report;
+}
+
+int Session::see_through_view(int view, const Click& c) {
+  if (!options_.see_through || c.label != 1) return view;
+  const SegmentView& base = views_[size_t(view)];
+  const Occluders occ = find_occluders(scene_, base.frame, c.x, c.y, options_.see_through_options, options_.threads);
+  if (!occ.found) return view;
+  const std::pair<int, float> key{view, float(occ.cut)};
+  for (const auto& [k, index] : peeled_)
+    if (k == key) return index;
+  ViewOptions vo = options_.see_through_views;
+  vo.use_photos = false;  // a photo cannot be peeled: the render can
+  vo.max_side = std::max(base.camera.width, base.camera.height);
+  vo.near_plane = float(occ.cut);
+  vo.threads = options_.threads;
+  SegmentView peeled = build_view(scene_, base.camera, -1, *sam_, vo);
+  peeled.name = base.name + "_through";
+  const int index = add_view(std::move(peeled));
+  peeled_.push_back({key, index});
+  return index;
 }
 
 bool Session::undo() {

@@ -10,6 +10,7 @@
 #include "models/sam.h"
 #include "segment/depth_layers.h"
 #include "segment/propagation.h"
+#include "segment/see_through.h"
 #include "segment/views.h"
 #include "segment/votes.h"
 
@@ -46,6 +47,11 @@ struct SessionOptions {
   // Negative clicks cut what SAM segments at them from the mask, instead of being given
   // to SAM as negative points (which reshapes the whole mask unpredictably).
   bool negative_regions = true;
+  // A positive click on something seen through a nearer layer's gaps segments a render of
+  // its view without that layer (see_through.h), added as a view of its own.
+  bool see_through = true;
+  SeeThroughOptions see_through_options;
+  ViewOptions see_through_views;  // how those renders are made and encoded (cache, threads)
 };
 
 struct UserClick {
@@ -118,6 +124,9 @@ class Session {
     std::vector<bool> selection;
   };
   RoundReport run_round(State& next, const State& previous);
+  // The view a positive click in `view` is segmented in: `view` itself, or a render of it
+  // without the occluders in front of the clicked surface (made once per view and depth).
+  int see_through_view(int view, const Click& click);
 
   const GaussianScene& scene_;
   std::vector<SegmentView> views_;
@@ -126,6 +135,7 @@ class Session {
   double scene_extent_ = 1;
   State state_;
   std::vector<State> history_;
+  std::vector<std::pair<std::pair<int, float>, int>> peeled_;  // (view, cut depth) -> peeled view
 };
 
 }  // namespace isegman::segment

@@ -62,6 +62,7 @@ SegmentView build_view(const GaussianScene& scene, const Camera& camera, int cam
   }
   RenderSettings rs;
   rs.threads = opt.threads;
+  rs.near_plane = opt.near_plane;
   for (int c = 0; c < 3; ++c) rs.background[c] = opt.background[c];
   v.frame = prepare_frame(scene, v.camera, rs);
   RenderOutput r = rasterize(v.frame, rs);

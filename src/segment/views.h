@@ -35,6 +35,7 @@ struct ViewOptions {
   std::string cache_dir;     // embedding cache ("" = none)
   int threads = 0;
   float background[3] = {0.f, 0.f, 0.f};
+  float near_plane = RenderSettings{}.near_plane;  // Gaussians nearer are not rendered (see_through.h)
 };
 
 // Parses a view sampling spec against `count` cameras: "all", "25%" (spread uniformly

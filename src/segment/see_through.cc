@@ -1,0 +1,105 @@
+#include "segment/see_through.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace isegman::segment {
+
+namespace {
+
+class FirstSurface : public ContributionVisitor {
+ public:
+  FirstSurface(const GaussianScene& scene, const Camera& camera, Image& out)
+      : scene_(scene), camera_(camera), out_(out), accumulated_(size_t(out.width) * out.height, 0.f) {}
+  void visit(int, int x, int y, uint32_t g, float weight) override {
+    float& a = accumulated_[size_t(y) * out_.width + x];
+    if (a >= 0.5f) return;
+    a += weight;
+    if (a >= 0.5f) {
+      const Vec3 p{scene_.positions[3 * g], scene_.positions[3 * g + 1], scene_.positions[3 * g + 2]};
+      out_.at(x, y) = float(camera_.world_to_camera(p).z);
+    }
+  }
+
+ private:
+  const GaussianScene& scene_;
+  const Camera& camera_;
+  Image& out_;
+  std::vector<float> accumulated_;  // each pixel is visited by one worker only (its tile's)
+};
+
+}  // namespace
+
+Image surface_depth(const GaussianScene& scene, const PreparedFrame& frame, const std::vector<uint8_t>* tiles,
+                    int threads) {
+  Image out(frame.camera.width, frame.camera.height, 1);
+  FirstSurface visitor(scene, frame.camera, out);
+  RenderSettings s;
+  s.color = false;
+  s.depth = false;
+  s.threads = threads;
+  rasterize(frame, s, nullptr, &visitor, tiles);
+  return out;
+}
+
+Occluders find_occluders(const GaussianScene& scene, const PreparedFrame& frame, double x, double y,
+                         const SeeThroughOptions& o, int threads) {
+  Occluders out;
+  const int w = frame.camera.width, h = frame.camera.height;
+  const int cx = std::clamp(int(std::floor(x)), 0, w - 1), cy = std::clamp(int(std::floor(y)), 0, h - 1);
+  const int longer = std::max(w, h);
+  const int r = std::max(4, int(std::lround(o.window * longer)));
+  const int flank = std::max(2, int(std::lround(o.flank * longer)));
+  // Only the tiles of the window (and its flanks) are rasterised.
+  const int x0 = std::max(0, cx - r - flank), x1 = std::min(w - 1, cx + r + flank);
+  const int y0 = std::max(0, cy - r - flank), y1 = std::min(h - 1, cy + r + flank);
+  std::vector<uint8_t> tiles(size_t(frame.grid_x) * frame.grid_y, 0);
+  for (int ty = y0 / kTileSize; ty <= y1 / kTileSize && ty < frame.grid_y; ++ty)
+    for (int tx = x0 / kTileSize; tx <= x1 / kTileSize && tx < frame.grid_x; ++tx) tiles[size_t(ty) * frame.grid_x + tx] = 1;
+  const Image z = surface_depth(scene, frame, &tiles, threads);
+  const double d0 = z.at(cx, cy);
+  if (!(d0 > 0)) return out;  // nothing solid clicked
+  out.surface = d0;
+  const double front = d0 * (1 - o.gap), back = d0 * (1 + o.band);
+  auto is_surface = [&](int xx, int yy) {
+    const float v = z.at(xx, yy);
+    return v >= front && v <= back;
+  };
+  // The clicked surface within `flank` pixels on both sides along (dx, dy).
+  auto flanked = [&](int xx, int yy, int dx, int dy) {
+    bool a = false, b = false;
+    for (int s = 1; s <= flank && !a; ++s) {
+      const int px = xx - s * dx, py = yy - s * dy;
+      if (px < 0 || py < 0 || px >= w || py >= h) break;
+      a = is_surface(px, py);
+    }
+    for (int s = 1; s <= flank && !b; ++s) {
+      const int px = xx + s * dx, py = yy + s * dy;
+      if (px < 0 || py < 0 || px >= w || py >= h) break;
+      b = is_surface(px, py);
+    }
+    return a && b;
+  };
+  int pixels = 0, occluding = 0;
+  double nearest_behind = 0;  // the deepest flanked occluder
+  for (int yy = std::max(0, cy - r); yy <= std::min(h - 1, cy + r); ++yy)
+    for (int xx = std::max(0, cx - r); xx <= std::min(w - 1, cx + r); ++xx) {
+      const float v = z.at(xx, yy);
+      if (!(v > 0)) continue;
+      ++pixels;
+      if (v >= front) continue;
+      if (flanked(xx, yy, 1, 0) || flanked(xx, yy, 0, 1)) {
+        ++occluding;
+        nearest_behind = std::max(nearest_behind, double(v));
+      }
+    }
+  out.share = pixels ? double(occluding) / pixels : 0.0;
+  if (out.share < o.min_share) return out;
+  // Just behind the occluders (whose Gaussians have some thickness), well before the
+  // clicked surface, so the object's own nearer parts stay.
+  out.cut = nearest_behind + 0.3 * (d0 - nearest_behind);
+  out.found = true;
+  return out;
+}
+
+}  // namespace isegman::segment

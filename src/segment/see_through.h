@@ -1,0 +1,40 @@
+// Seeing through occluders at a click: a click on an object seen through the gaps of
+// something nearer (a vase behind a trellis, a crate behind a post) gives SAM only the
+// fragments between the bars. When, around the click, thin things nearer than the clicked
+// surface are flanked on both sides by that surface (it is seen around them), the view is
+// rendered again without everything up to just behind them (a near plane) and SAM
+// segments the object whole; its votes then come from that peeled render too.
+#pragma once
+
+#include "core/image.h"
+#include "core/scene.h"
+#include "render/rasterizer.h"
+
+namespace isegman::segment {
+
+struct SeeThroughOptions {
+  double window = 0.08;       // half-size of the window around the click, share of the longer side
+  double flank = 0.03;        // how far (share of the longer side) the surface must reappear on both sides
+  double gap = 0.02;          // relative depth by which an occluder is nearer than the clicked surface
+  double band = 0.15;         // relative depth behind the clicked surface that still counts as it
+  double min_share = 0.05;    // flanked occluder pixels needed, share of the window's pixels
+};
+
+struct Occluders {
+  bool found = false;
+  double cut = 0;        // camera-space depth just behind the occluders: render from here on
+  double share = 0;      // share of the window's pixels that are flanked occluders
+  double surface = 0;    // depth of the clicked surface
+};
+
+// Depth of the first surface per pixel: the centre depth of the Gaussian at which the
+// accumulated blending weight reaches 0.5 (0 where it never does). Unlike the expected
+// depth it does not blend a bar's edge with the wall behind it. `tiles` limits the work.
+Image surface_depth(const GaussianScene& scene, const PreparedFrame& frame, const std::vector<uint8_t>* tiles,
+                    int threads = 0);
+
+// Looks for flanked occluders around continuous pixel (x, y) of a prepared view.
+Occluders find_occluders(const GaussianScene& scene, const PreparedFrame& frame, double x, double y,
+                         const SeeThroughOptions& options = {}, int threads = 0);
+
+}  // namespace isegman::segment

@@ -1,0 +1,61 @@
+#include "segment/see_through.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace isegman::segment {
+namespace {
+
+// A scene of small round splats, added one at a time.
+struct Splats {
+  GaussianScene scene;
+  void add(double x, double y, double z, double size) {
+    scene.sh_degree = 0;
+    scene.positions.insert(scene.positions.end(), {float(x), float(y), float(z)});
+    const float ls = float(std::log(size));
+    scene.scales.insert(scene.scales.end(), {ls, ls, ls});
+    scene.sh.insert(scene.sh.end(), {0.5f, 0.5f, 0.5f});
+    scene.rotations.insert(scene.rotations.end(), {1.f, 0.f, 0.f, 0.f});
+    scene.opacity.push_back(5);  // opaque
+  }
+  // A square sheet facing the camera at depth z.
+  void sheet(double x0, double x1, double y0, double y1, double z, double step = 0.02) {
+    for (double y = y0; y <= y1; y += step)
+      for (double x = x0; x <= x1; x += step) add(x, y, z, step * 0.6);
+  }
+};
+
+const Camera kCamera = Camera::look_at({0, 0, 0}, {0, 0, 1}, {0, -1, 0}, 160, 160, 50);
+
+TEST(SeeThrough, BarsInFrontOfTheClickedSurfaceAreFoundAndCutBehind) {
+  Splats s;
+  s.sheet(-1, 1, -1, 1, 4.0);                                      // the object, clicked
+  for (double x = -0.9; x <= 0.9; x += 0.3) s.sheet(x, x + 0.08, -1, 1, 3.8);  // vertical bars
+  PreparedFrame frame = prepare_frame(s.scene, kCamera);
+  // Clicked between two bars (x = 0.15 on the object).
+  const Occluders o = find_occluders(s.scene, frame, 80 + 0.15 / 4.0 * kCamera.fx, 80.5);
+  ASSERT_TRUE(o.found) << "share " << o.share << " surface " << o.surface;
+  EXPECT_NEAR(o.surface, 4.0, 0.02);
+  EXPECT_GT(o.share, 0.05);
+  EXPECT_GT(o.cut, 3.8);  // behind the bars ...
+  EXPECT_LT(o.cut, 4.0);  // ... in front of the object
+}
+
+TEST(SeeThrough, NothingInFrontOrOnlyGroundBelowIsNoOccluder) {
+  Splats open;
+  open.sheet(-1, 1, -1, 1, 4.0);
+  PreparedFrame a = prepare_frame(open.scene, kCamera);
+  EXPECT_FALSE(find_occluders(open.scene, a, 80.5, 80.5).found);
+  // Something nearer below the click (ground in front of an object's foot) is not flanked
+  // by the clicked surface on both sides: no see-through.
+  Splats ground = open;
+  ground.sheet(-1, 1, 0.25, 1, 3.6);
+  PreparedFrame b = prepare_frame(ground.scene, kCamera);
+  const Occluders o = find_occluders(ground.scene, b, 80.5, 86.5);  // the ground starts ~6 px below
+  EXPECT_NEAR(o.surface, 4.0, 0.02);
+  EXPECT_FALSE(o.found) << "share " << o.share;
+}
+
+}  // namespace
+}  // namespace isegman::segment
