@@ -90,6 +90,7 @@ Occluders find_occluders(const GaussianScene& scene, const PreparedFrame& frame,
       if (v >= front) continue;
       if (flanked(xx, yy, 1, 0) || flanked(xx, yy, 0, 1)) {
         ++occluding;
+        out.pixels.push_back(uint32_t(yy) * uint32_t(w) + uint32_t(xx));
         nearest_behind = std::max(nearest_behind, double(v));
       }
     }

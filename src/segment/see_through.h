@@ -6,6 +6,9 @@
 // segments the object whole; its votes then come from that peeled render too.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "core/image.h"
 #include "core/scene.h"
 #include "render/rasterizer.h"
@@ -18,6 +21,7 @@ struct SeeThroughOptions {
   double gap = 0.02;          // relative depth by which an occluder is nearer than the clicked surface
   double band = 0.15;         // relative depth behind the clicked surface that still counts as it
   double min_share = 0.05;    // flanked occluder pixels needed, share of the window's pixels
+  double max_in_mask = 0.5;   // no peeling when SAM's mask at the click already holds this share of them
 };
 
 struct Occluders {
@@ -25,6 +29,7 @@ struct Occluders {
   double cut = 0;        // camera-space depth just behind the occluders: render from here on
   double share = 0;      // share of the window's pixels that are flanked occluders
   double surface = 0;    // depth of the clicked surface
+  std::vector<uint32_t> pixels;  // the flanked occluder pixels (y * width + x)
 };
 
 // Depth of the first surface per pixel: the centre depth of the Gaussian at which the

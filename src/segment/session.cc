@@ -95,6 +95,12 @@ int Session::see_through_view(int view, const Click& c) {
   const SegmentView& base = views_[size_t(view)];
   const Occluders occ = find_occluders(scene_, base.frame, c.x, c.y, options_.see_through_options, options_.threads);
   if (!occ.found) return view;
+  // Where SAM already takes the nearer things in with the clicked surface (the near leaves
+  // of the same plant), they are part of what the user means: no peeling.
+  const models::SegmentResult direct = sam_->decode(base.embedding, {c});
+  size_t inside = 0;
+  for (uint32_t p : occ.pixels) inside += direct.mask.data[p] > 0.5f;
+  if (double(inside) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) return view;
   const std::pair<int, float> key{view, float(occ.cut)};
   for (const auto& [k, index] : peeled_)
     if (k == key) return index;
