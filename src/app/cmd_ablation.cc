@@ -53,12 +53,13 @@ int run_eval_ablation(const Args& args) {
       {"paper: hybrid + overlap IIM", [](segment::SessionOptions& o) {
          o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
          o.selection_prompt_rounds = 0;
-         o.see_through = false;
+         o.see_through = o.coherence = false;
          o.propagation.hidden_fallback = true;
        }},
       {"- depth layers", [](segment::SessionOptions& o) { o.depth_layers = false; }},
       {"- local depth layers", [](segment::SessionOptions& o) { o.layer_options.region = 0; }},
       {"- see through occluders", [](segment::SessionOptions& o) { o.see_through = false; }},
+      {"- neighbour coherence", [](segment::SessionOptions& o) { o.coherence = false; }},
       {"- agreement IIM", [](segment::SessionOptions& o) { o.agreement_inspection = false; }},
       {"- candidate choice", [](segment::SessionOptions& o) { o.choose_candidate = false; }},
       {"- selection prompts", [](segment::SessionOptions& o) { o.selection_prompt_rounds = 0; }},

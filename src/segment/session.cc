@@ -527,7 +527,12 @@ RoundReport Session::run_round(State& next, const State& prev) {
   for (const ViewState& vs : fresh)
     if (vs.from_selection && vs.status == ViewStatus::NoOverlap) ++rep.dropped;
   next.views = std::move(fresh);
-  next.selection = acc.select(o.tau, o.min_total_weight);
+  if (o.coherence) {
+    if (!neighbours_) neighbours_ = std::make_unique<NeighbourIndex>(scene_);
+    next.selection = coherent_selection(acc, *neighbours_, o.tau, o.min_total_weight, o.coherence_options);
+  } else {
+    next.selection = acc.select(o.tau, o.min_total_weight);
+  }
   rep.selected = size_t(std::count(next.selection.begin(), next.selection.end(), true));
   rep.views_segmented = segmented;
   rep.ms_sam += ms_sam_later;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "models/sam.h"
+#include "segment/coherence.h"
 #include "segment/depth_layers.h"
 #include "segment/propagation.h"
 #include "segment/see_through.h"
@@ -49,6 +50,9 @@ struct SessionOptions {
   bool negative_regions = true;
   // A positive click on something seen through a nearer layer's gaps segments a render of
   // its view without that layer (see_through.h), added as a view of its own.
+  // Shares between tau_low and tau decided by the k nearest neighbours (coherence.h).
+  bool coherence = true;
+  CoherenceOptions coherence_options;
   bool see_through = true;
   SeeThroughOptions see_through_options;
   ViewOptions see_through_views;  // how those renders are made and encoded (cache, threads)
@@ -136,6 +140,7 @@ class Session {
   State state_;
   std::vector<State> history_;
   std::vector<std::pair<std::pair<int, float>, int>> peeled_;  // (view, cut depth) -> peeled view
+  std::unique_ptr<NeighbourIndex> neighbours_;  // built at the first decision that needs it
 };
 
 }  // namespace isegman::segment
