@@ -386,12 +386,6 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // A round is a function of the clicks: votes start empty and every view is re-judged.
   VoteAccumulator& acc = next.votes;
   acc = VoteAccumulator(scene_.size());
-  // The selection the votes so far decide (inspection and prompts judge against it).
-  auto decide = [&](const VoteAccumulator& votes) {
-    if (!o.coherence) return votes.select(o.tau, o.min_total_weight);
-    if (!neighbours_) neighbours_ = std::make_unique<NeighbourIndex>(scene_);
-    return coherent_selection(votes, *neighbours_, o.tau, o.min_total_weight, o.coherence_options);
-  };
   bool first = true;
 
   // Votes of one view's mask, gated to the target's depth layer.
@@ -430,7 +424,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     bool have_raw = false;
     const bool several = r.candidates.size() > 1 && o.choose_candidate;
     if (inspect || (!first && several)) {
-      current = decide(acc);
+      current = acc.select(o.tau, o.min_total_weight);
       const std::vector<float> values = as_values(current);
       if (several) {  // the coverage decides the candidate, then the candidate's votes
         coverage = selection_values_coverage(scene_, views_[k], values, o.threads);
@@ -485,7 +479,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
 
   // 4. Views no click reached: prompt SAM from the selection rendered in them.
   for (int round = 0; round < o.selection_prompt_rounds && !first; ++round) {
-    const std::vector<bool> current = decide(acc);
+    const std::vector<bool> current = acc.select(o.tau, o.min_total_weight);
     const std::vector<float> values = as_values(current);
     std::vector<size_t> which;
     std::vector<std::vector<models::Click>> prompts;
@@ -533,7 +527,12 @@ RoundReport Session::run_round(State& next, const State& prev) {
   for (const ViewState& vs : fresh)
     if (vs.from_selection && vs.status == ViewStatus::NoOverlap) ++rep.dropped;
   next.views = std::move(fresh);
-  next.selection = decide(acc);
+  if (o.coherence) {
+    if (!neighbours_) neighbours_ = std::make_unique<NeighbourIndex>(scene_);
+    next.selection = coherent_selection(acc, *neighbours_, o.tau, o.min_total_weight, o.coherence_options);
+  } else {
+    next.selection = acc.select(o.tau, o.min_total_weight);
+  }
   rep.selected = size_t(std::count(next.selection.begin(), next.selection.end(), true));
   rep.views_segmented = segmented;
   rep.ms_sam += ms_sam_later;
