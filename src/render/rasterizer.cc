@@ -10,6 +10,8 @@
 #include "core/sh.h"
 #include "render/projection.h"
 #include "render/radix_sort.h"
+#include "render/tile_kernel.h"
+#include "render/visibility.h"
 
 namespace isegman {
 namespace {
@@ -22,15 +24,11 @@ double ms_since(Clock::time_point t0) {
 constexpr float kMinAlpha = 1.f / 255.f;
 constexpr float kMinTransmittance = 1e-4f;
 
-// A projected Gaussian, as the tile loop reads it.
-struct Splat {
-  float mx, my;          // centre, index coordinates
-  float ca, cb, cc;      // conic
-  float opacity;         // activated
+// A Gaussian as projection leaves it: the splat, its colour and its tile rectangle
+// (needed only for binning).
+struct Projected {
+  Splat splat;
   float rgb[3];
-  float depth;
-  uint32_t index;        // Gaussian index in the scene
-  uint16_t px0, py0, px1, py1;  // pixel box outside which alpha < 1/255 (inclusive, clipped)
   uint16_t tx0, ty0, tx1, ty1;  // tile rect [tx0, tx1) x [ty0, ty1)
 };
 
@@ -79,7 +77,8 @@ inline int lanes_set(v8i mask) {
 
 // Projects Gaussian i; false when it cannot contribute to any pixel.
 bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera& cam, const RenderSettings& s,
-                    int degree, int grid_x, int grid_y, Splat& out) {
+                    int degree, int grid_x, int grid_y, Projected& proj) {
+  Splat& out = proj.splat;
   const float opacity = 1.f / (1.f + std::exp(-scene.opacity[i]));
   if (!(opacity >= kMinAlpha)) return false;  // can never reach alpha 1/255
   const float* p = &scene.positions[3 * i];
@@ -115,10 +114,10 @@ bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera
   out.px1 = uint16_t(px1);
   out.py0 = uint16_t(py0);
   out.py1 = uint16_t(py1);
-  out.tx0 = uint16_t(tx0);
-  out.tx1 = uint16_t(tx1);
-  out.ty0 = uint16_t(ty0);
-  out.ty1 = uint16_t(ty1);
+  proj.tx0 = uint16_t(tx0);
+  proj.tx1 = uint16_t(tx1);
+  proj.ty0 = uint16_t(ty0);
+  proj.ty1 = uint16_t(ty1);
   out.mx = f.mean_x;
   out.my = f.mean_y;
   out.ca = f.conic_a;
@@ -132,9 +131,9 @@ bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera
     const float n = std::sqrt(dx * dx + dy * dy + dz * dz);
     if (n > 0) { dx /= n; dy /= n; dz /= n; }
     // Coefficients are [coefficient][channel]; a lower render degree reads a prefix.
-    sh_to_rgb(degree, scene.sh_of(i), dx, dy, dz, out.rgb);
+    sh_to_rgb(degree, scene.sh_of(i), dx, dy, dz, proj.rgb);
   } else {
-    out.rgb[0] = out.rgb[1] = out.rgb[2] = 0.f;
+    proj.rgb[0] = proj.rgb[1] = proj.rgb[2] = 0.f;
   }
   return true;
 }
@@ -142,13 +141,22 @@ bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera
 // Tile buffers hold pixel k = row * 16 + column; a row is two groups of 8 lanes.
 constexpr int kLanes = 8;
 
+// Per-entry bookkeeping of a sums pass (TilePass::on_tile): the entry's summed weights
+// over the pixels of `lanes` (8 bits per row group, bit i = column x_base + i), and
+// whether it was blended at an open pixel.
+struct EntrySum {
+  uint32_t sum = 0;  // at most 256 pixels x fixed_weight(w < 1) < 2^32
+  uint8_t blended = 0;
+};
+
 // Blends Gaussian g into the 8 pixels of one row group starting at column x_base, lanes
 // outside [x0, x1] untouched. The INRIA per-pixel rules, branch-free. Returns the
 // number of pixels that terminated.
-template <bool kVisit>
-inline int blend_group(const Splat& g, float value, float dy, int k0, int x_base, int x0, int x1, int y,
-                       float alpha_max, bool want_value, TileBuffers& b, uint64_t& evaluated, uint64_t& contributed,
-                       ContributionVisitor* visitor, int worker) {
+template <bool kVisit, bool kSums>
+inline int blend_group(const Splat& g, const float* rgb, float value, float dy, int k0, int x_base, int x0, int x1,
+                       int y, float alpha_max, bool want_value, TileBuffers& b, uint64_t& evaluated,
+                       uint64_t& contributed, ContributionVisitor* visitor, int worker, unsigned sum_lanes,
+                       EntrySum& entry) {
   static const v8f lane = {0, 1, 2, 3, 4, 5, 6, 7};
   const v8f xs = splat8(float(x_base)) + lane;
   const v8i in_range = (xs >= splat8(float(x0))) & (xs <= splat8(float(x1)));
@@ -170,9 +178,9 @@ inline int blend_group(const Splat& g, float value, float dy, int k0, int x_base
   std::memcpy(&C1, b.C[1] + k0, sizeof C1);
   std::memcpy(&C2, b.C[2] + k0, sizeof C2);
   std::memcpy(&D, b.D + k0, sizeof D);
-  C0 += w * splat8(g.rgb[0]);
-  C1 += w * splat8(g.rgb[1]);
-  C2 += w * splat8(g.rgb[2]);
+  C0 += w * splat8(rgb[0]);
+  C1 += w * splat8(rgb[1]);
+  C2 += w * splat8(rgb[2]);
   D += w * splat8(g.depth);
   T = select8(contrib, test_T, T);
   done |= term;
@@ -201,13 +209,35 @@ inline int blend_group(const Splat& g, float value, float dy, int k0, int x_base
       visitor->visit_row8(worker, x_base, y, g.index, weights, lanes);
     }
   }
+  if constexpr (kSums) {
+    entry.blended |= uint8_t(lanes_set(valid) > 0);
+    if (added > 0)
+      for (int i = 0; i < kLanes; ++i)
+        if (contrib[i] && ((sum_lanes >> i) & 1u)) entry.sum += uint32_t(fixed_weight(w[i]));
+  }
   return lanes_set(term);
 }
 
-template <bool kVisit>
-void raster_tile(int tile_x, int tile_y, const Splat* splats, const uint32_t* list, size_t count, int width,
-                 int height, const RenderSettings& s, const float* values, ContributionVisitor* visitor, int worker,
-                 TileBuffers& b, uint64_t& evaluated_out, uint64_t& contributed_out) {
+// Lane bits (one byte per row group: row * 2 + half) of the tile's pixels where
+// mask > 0.5; every bit without a mask.
+void tile_lanes(const Image* mask, int x_begin, int y_begin, int x_end, int y_end, uint8_t out[2 * kTileSize]) {
+  for (int r = 0; r < kTileSize; ++r)
+    for (int h = 0; h < 2; ++h) {
+      uint8_t bits = 0;
+      const int y = y_begin + r;
+      for (int i = 0; i < kLanes; ++i) {
+        const int x = x_begin + h * kLanes + i;
+        if (y < y_end && x < x_end && (!mask || mask->data[size_t(y) * mask->width + x] > 0.5f)) bits |= uint8_t(1u << i);
+      }
+      out[r * 2 + h] = bits;
+    }
+}
+
+template <bool kVisit, bool kSums>
+void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, const uint32_t* list, size_t count,
+                 int width, int height, const RenderSettings& s, const float* values, ContributionVisitor* visitor,
+                 int worker, TileBuffers& b, uint64_t& evaluated_out, uint64_t& contributed_out,
+                 const uint8_t* lanes, EntrySum* entries) {
   // Counted locally: the per-worker totals share a cache line, and bumping them in the
   // pixel loop from two threads would serialise the workers (false sharing).
   uint64_t evaluated = 0, contributed = 0;
@@ -215,6 +245,7 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const uint32_t* li
     uint64_t &from_e, &from_c, &to_e, &to_c;
     ~Flush() { to_e += from_e; to_c += from_c; }
   } flush{evaluated, contributed, evaluated_out, contributed_out};
+  static const float kBlack[3] = {0.f, 0.f, 0.f};
   const bool want_value = values != nullptr;
   const int x_begin = tile_x * kTileSize, y_begin = tile_y * kTileSize;
   const int x_end = std::min(width, x_begin + kTileSize), y_end = std::min(height, y_begin + kTileSize);
@@ -226,9 +257,12 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const uint32_t* li
   std::fill(b.V, b.V + kPx, 0.f);
   std::fill(b.done, b.done + kPx, 0);
   int finished = 0;
+  EntrySum unused;
   for (size_t n = 0; n < count && finished < pixels; ++n) {
     const Splat& g = splats[list[n]];
+    const float* col = rgb ? rgb + 3 * size_t(list[n]) : kBlack;
     const float value = want_value ? values[g.index] : 0.f;
+    EntrySum& entry = kSums ? entries[n] : unused;
     // Pixel box of this Gaussian inside the tile; columns past the image edge never count.
     const int x0 = std::max(int(g.px0), x_begin), x1 = std::min(int(g.px1), x_end - 1);
     const int y0 = std::max(int(g.py0), y_begin), y1 = std::min(int(g.py1), y_end - 1);
@@ -238,20 +272,16 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const uint32_t* li
       for (int half = 0; half < kTileSize / kLanes; ++half) {
         const int xb = x_begin + half * kLanes;
         if (xb > x1 || xb + kLanes - 1 < x0) continue;
-        finished += blend_group<kVisit>(g, value, dy, row + half * kLanes, xb, x0, x1, y, s.alpha_max, want_value, b,
-                                        evaluated, contributed, visitor, worker);
+        const unsigned sum_lanes = kSums ? lanes[(y - y_begin) * 2 + half] : 0u;
+        finished += blend_group<kVisit, kSums>(g, col, value, dy, row + half * kLanes, xb, x0, x1, y, s.alpha_max,
+                                               want_value, b, evaluated, contributed, visitor, worker, sum_lanes,
+                                               entry);
       }
     }
   }
 }
 
 }  // namespace
-
-struct PreparedFrame::Data {
-  std::vector<Splat> splats;          // visible Gaussians in depth order
-  std::vector<uint32_t> tile_start;   // tiles + 1 offsets into tile_list
-  std::vector<uint32_t> tile_list;    // per tile: indices into splats, front to back
-};
 
 PreparedFrame::PreparedFrame() = default;
 PreparedFrame::~PreparedFrame() = default;
@@ -263,8 +293,8 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
   PreparedFrame frame;
   frame.camera = camera;
   frame.gaussians = scene.size();
-  frame.data_ = std::make_unique<PreparedFrame::Data>();
-  PreparedFrame::Data& d = *frame.data_;
+  auto data = std::make_unique<PreparedFrame::Data>();
+  PreparedFrame::Data& d = *data;
   RenderStats& stats = frame.stats;
   const int W = camera.width, H = camera.height;
   const int grid_x = (W + kTileSize - 1) / kTileSize, grid_y = (H + kTileSize - 1) / kTileSize;
@@ -279,45 +309,55 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
   const size_t chunks = (N + kChunk - 1) / kChunk;
   // Reused between renders on the same thread: fresh buffers of this size cost more in
   // page faults than the projection itself.
-  thread_local std::vector<std::vector<Splat>> scratch;
+  thread_local std::vector<std::vector<Projected>> scratch;
   // A plain reference: lambdas running on worker threads must see this thread's buffers.
-  std::vector<std::vector<Splat>>& chunk_out = scratch;
+  std::vector<std::vector<Projected>>& chunk_out = scratch;
   if (chunk_out.size() < chunks) chunk_out.resize(chunks);
   for (auto& v : chunk_out) v.clear();  // stale entries past `chunks` stay empty
   parallel_for(chunks, s.threads, [&](int, size_t c) {
-    std::vector<Splat>& v = chunk_out[c];
-    Splat sp;
+    std::vector<Projected>& v = chunk_out[c];
+    Projected sp;
     for (size_t i = c * kChunk, e = std::min(N, (c + 1) * kChunk); i < e; ++i)
       if (preprocess_one(scene, i, cam, s, degree, grid_x, grid_y, sp)) v.push_back(sp);
   });
   size_t visible = 0;
   for (const auto& v : chunk_out) visible += v.size();
-  std::vector<uint32_t> order(visible), keys(visible);
-  {
-    size_t k = 0;
-    for (const auto& v : chunk_out)
-      for (size_t j = 0; j < v.size(); ++j, ++k) {
-        order[k] = uint32_t(k);
-        // Depths are > near_plane > 0, so their IEEE bits sort like the values.
-        std::memcpy(&keys[k], &v[j].depth, 4);
-      }
-  }
+  std::vector<uint32_t> order(visible);
+  for (size_t k = 0; k < visible; ++k) order[k] = uint32_t(k);
   stats.visible = visible;
   stats.ms_preprocess = ms_since(t0);
 
   // 2. Sort by depth (stable: ties keep index order, as the CUDA radix sort does), then
   //    bin into tiles in that order so every tile list is already depth-sorted.
   t0 = Clock::now();
-  radix_sort_pairs(keys, order);
-  std::vector<Splat>& splats = d.splats;
-  splats.resize(visible);
   {
-    std::vector<const Splat*> flat(visible);
+    // Depths are > near_plane > 0, so their IEEE bits sort like the values.
+    std::vector<uint32_t> depth_keys(visible);
     size_t k = 0;
     for (const auto& v : chunk_out)
-      for (const Splat& sp : v) flat[k++] = &sp;
+      for (const Projected& p : v) std::memcpy(&depth_keys[k++], &p.splat.depth, 4);
+    radix_sort_pairs(depth_keys, order);
+  }
+  std::vector<Splat>& splats = d.splats;
+  splats.resize(visible);
+  if (s.color) d.rgb.resize(3 * visible);
+  struct Rect {
+    uint16_t tx0, ty0, tx1, ty1;
+  };
+  std::vector<Rect> rects(visible);
+  {
+    std::vector<const Projected*> flat(visible);
+    size_t k = 0;
+    for (const auto& v : chunk_out)
+      for (const Projected& sp : v) flat[k++] = &sp;
     parallel_chunks(visible, 65536, s.threads, [&](int, size_t a, size_t e) {
-      for (size_t j = a; j < e; ++j) splats[j] = *flat[order[j]];
+      for (size_t j = a; j < e; ++j) {
+        const Projected& p = *flat[order[j]];
+        splats[j] = p.splat;
+        rects[j] = {p.tx0, p.ty0, p.tx1, p.ty1};
+        if (s.color)
+          for (int c = 0; c < 3; ++c) d.rgb[3 * j + c] = p.rgb[c];
+      }
     });
   }
   std::vector<uint32_t>().swap(order);
@@ -332,7 +372,7 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
   parallel_for(slices, s.threads, [&](int, size_t c) {
     std::vector<uint32_t>& cnt = slice_count[c];
     for (size_t k = c * per_slice, e = std::min(visible, (c + 1) * per_slice); k < e; ++k) {
-      const Splat& g = splats[k];
+      const Rect& g = rects[k];
       for (int ty = g.ty0; ty < g.ty1; ++ty)
         for (int tx = g.tx0; tx < g.tx1; ++tx) ++cnt[size_t(ty) * grid_x + tx];
     }
@@ -340,9 +380,10 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
   std::vector<uint32_t>& tile_start = d.tile_start;
   tile_start.assign(tiles + 1, 0);
   for (size_t t = 0; t < tiles; ++t) {
-    uint32_t sum = 0;
+    uint64_t sum = tile_start[t];
     for (size_t c = 0; c < slices; ++c) sum += slice_count[c][t];
-    tile_start[t + 1] = tile_start[t] + sum;
+    if (sum > UINT32_MAX) throw Error("render: more than 2^32 (tile, Gaussian) pairs in one frame");
+    tile_start[t + 1] = uint32_t(sum);
   }
   // slice_count becomes each slice's write cursor per tile.
   for (size_t t = 0; t < tiles; ++t) {
@@ -358,7 +399,7 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
   parallel_for(slices, s.threads, [&](int, size_t c) {
     std::vector<uint32_t>& fill = slice_count[c];
     for (size_t k = c * per_slice, e = std::min(visible, (c + 1) * per_slice); k < e; ++k) {
-      const Splat& g = splats[k];
+      const Rect& g = rects[k];
       for (int ty = g.ty0; ty < g.ty1; ++ty)
         for (int tx = g.tx0; tx < g.tx1; ++tx) tile_list[fill[size_t(ty) * grid_x + tx]++] = uint32_t(k);
     }
@@ -368,19 +409,29 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
 
   frame.grid_x = grid_x;
   frame.grid_y = grid_y;
+  PreparedFrameAccess::adopt(frame, std::move(data));
   return frame;
 }
 
-RenderOutput rasterize(const PreparedFrame& frame, const RenderSettings& s, const std::vector<float>* values,
-                       ContributionVisitor* visitor, const std::vector<uint8_t>* tile_mask) {
+RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, const TilePass& pass) {
+  const std::vector<float>* values = pass.values;
+  const std::vector<uint8_t>* tile_mask = pass.tile_mask;
+  ContributionVisitor* visitor = pass.visitor;
   if (values && values->size() != frame.gaussians) throw Error("render: per-Gaussian values do not match the scene size");
   const int grid_x = frame.grid_x, grid_y = frame.grid_y;
   const size_t tiles = size_t(grid_x) * grid_y;
   if (tile_mask && tile_mask->size() != tiles) throw Error("render: tile mask does not match the frame");
   const int W = frame.camera.width, H = frame.camera.height;
-  const std::vector<Splat>& splats = frame.data_->splats;
-  const std::vector<uint32_t>& tile_start = frame.data_->tile_start;
-  const std::vector<uint32_t>& tile_list = frame.data_->tile_list;
+  if (pass.sum_mask && (pass.sum_mask->width != W || pass.sum_mask->height != H || pass.sum_mask->channels != 1))
+    throw Error("render: pixel mask does not match the frame");
+  const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
+  if (d.compact && s.alpha_max != d.alpha_max)
+    throw Error("render: a compacted frame renders only with the alpha_max it was compacted for");
+  const std::vector<Splat>& splats = d.splats;
+  const float* rgb = d.rgb.empty() ? nullptr : d.rgb.data();
+  const std::vector<uint32_t>& tile_start = d.tile_start;
+  const std::vector<uint32_t>& tile_list = d.tile_list;
+  const bool sums = bool(pass.on_tile);
   RenderOutput out;
   out.stats = frame.stats;
   auto t0 = Clock::now();
@@ -395,6 +446,9 @@ RenderOutput rasterize(const PreparedFrame& frame, const RenderSettings& s, cons
   if (visitor) visitor->begin(workers);
   std::vector<uint64_t> evaluated(workers, 0), contributed(workers, 0);
   std::vector<TileBuffers> buffers(workers);
+  std::vector<std::vector<EntrySum>> entry_buffers(sums ? workers : 0);
+  std::vector<std::vector<uint32_t>> sum_out(sums ? workers : 0);
+  std::vector<std::vector<uint8_t>> blended_out(sums ? workers : 0);
   parallel_for(tiles, workers, [&](int w, size_t t) {
     const int tx = int(t % grid_x), ty = int(t / grid_x);
     if (tile_mask && !(*tile_mask)[t]) {
@@ -407,14 +461,35 @@ RenderOutput rasterize(const PreparedFrame& frame, const RenderSettings& s, cons
     TileBuffers& b = buffers[w];
     const uint32_t* list = tile_list.data() + tile_start[t];
     const size_t count = tile_start[t + 1] - tile_start[t];
-    if (visitor)
-      raster_tile<true>(tx, ty, splats.data(), list, count, W, H, s, vals, visitor, w, b, evaluated[w],
-                        contributed[w]);
-    else
-      raster_tile<false>(tx, ty, splats.data(), list, count, W, H, s, vals, nullptr, w, b, evaluated[w],
-                         contributed[w]);
     const int x_begin = tx * kTileSize, y_begin = ty * kTileSize;
     const int x_end = std::min(W, x_begin + kTileSize), y_end = std::min(H, y_begin + kTileSize);
+    if (sums) {
+      uint8_t lanes[2 * kTileSize];
+      tile_lanes(pass.sum_mask, x_begin, y_begin, x_end, y_end, lanes);
+      std::vector<EntrySum>& e = entry_buffers[w];
+      e.assign(count, EntrySum{});
+      if (visitor)
+        raster_tile<true, true>(tx, ty, splats.data(), rgb, list, count, W, H, s, vals, visitor, w, b, evaluated[w],
+                                contributed[w], lanes, e.data());
+      else
+        raster_tile<false, true>(tx, ty, splats.data(), rgb, list, count, W, H, s, vals, nullptr, w, b,
+                                 evaluated[w], contributed[w], lanes, e.data());
+      std::vector<uint32_t>& so = sum_out[w];
+      std::vector<uint8_t>& bo = blended_out[w];
+      so.resize(count);
+      bo.resize(count);
+      for (size_t n = 0; n < count; ++n) {
+        so[n] = e[n].sum;
+        bo[n] = e[n].blended;
+      }
+      pass.on_tile(w, t, so.data(), bo.data());
+    } else if (visitor) {
+      raster_tile<true, false>(tx, ty, splats.data(), rgb, list, count, W, H, s, vals, visitor, w, b, evaluated[w],
+                               contributed[w], nullptr, nullptr);
+    } else {
+      raster_tile<false, false>(tx, ty, splats.data(), rgb, list, count, W, H, s, vals, nullptr, w, b, evaluated[w],
+                                contributed[w], nullptr, nullptr);
+    }
     for (int y = y_begin; y < y_end; ++y)
       for (int x = x_begin; x < x_end; ++x) {
         const int k = (y - y_begin) * kTileSize + (x - x_begin);
@@ -435,6 +510,14 @@ RenderOutput rasterize(const PreparedFrame& frame, const RenderSettings& s, cons
   return out;
 }
 
+RenderOutput rasterize(const PreparedFrame& frame, const RenderSettings& s, const std::vector<float>* values,
+                       ContributionVisitor* visitor, const std::vector<uint8_t>* tile_mask) {
+  TilePass pass;
+  pass.values = values;
+  pass.visitor = visitor;
+  pass.tile_mask = tile_mask;
+  return run_tiles(frame, s, pass);
+}
 RenderOutput render(const GaussianScene& scene, const Camera& camera, const RenderSettings& s,
                     const std::vector<float>* values, ContributionVisitor* visitor) {
   if (values && values->size() != scene.size()) throw Error("render: per-Gaussian values do not match the scene size");

@@ -78,18 +78,19 @@ class PreparedFrame {
   int grid_x = 0, grid_y = 0;  // tiles
   RenderStats stats;           // preprocessing and sorting figures
 
+  struct Data;  // opaque: render/tile_kernel.h
+
  private:
-  struct Data;
   std::unique_ptr<Data> data_;
-  friend PreparedFrame prepare_frame(const GaussianScene&, const Camera&, const RenderSettings&);
-  friend RenderOutput rasterize(const PreparedFrame&, const RenderSettings&, const std::vector<float>*,
-                                ContributionVisitor*, const std::vector<uint8_t>*);
+  friend struct PreparedFrameAccess;
 };
 
 // Projects, sorts and bins (uses settings.near_plane, blur, sh_degree, color, threads).
 PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, const RenderSettings& settings = {});
 // Blends a prepared frame. `tile_mask` (optional, grid_x * grid_y flags) limits the work
-// to the flagged tiles; other tiles come out empty (background, alpha 0).
+// to the flagged tiles; other tiles come out empty (background, alpha 0). A frame prepared
+// with settings.color off, or compacted without its colours (render/visibility.h),
+// renders black. Per-Gaussian values must be finite.
 RenderOutput rasterize(const PreparedFrame& frame, const RenderSettings& settings = {},
                        const std::vector<float>* values = nullptr, ContributionVisitor* visitor = nullptr,
                        const std::vector<uint8_t>* tile_mask = nullptr);

@@ -65,7 +65,9 @@ SegmentView build_view(const GaussianScene& scene, const Camera& camera, int cam
   rs.near_plane = opt.near_plane;
   for (int c = 0; c < 3; ++c) rs.background[c] = opt.background[c];
   v.frame = prepare_frame(scene, v.camera, rs);
-  RenderOutput r = rasterize(v.frame, rs);
+  // The frame is kept for votes and selection masks: compacted (what no pixel blends is
+  // dropped; per-tile vote sums kept), without colours, in the same pass as the render.
+  RenderOutput r = compact_frame(v.frame, rs, false);
   v.depth = std::move(r.depth);
   v.alpha = std::move(r.alpha);
   if (opt.use_photos) {

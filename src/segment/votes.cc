@@ -9,42 +9,6 @@
 namespace isegman::segment {
 namespace {
 
-// Per-worker dense accumulators, merged into a sparse list (integer sums: exact and
-// order independent).
-struct VoteVisitor : ContributionVisitor {
-  size_t n;
-  const Image* mask;
-  std::vector<std::vector<int64_t>> sums;
-  VoteVisitor(size_t n_, const Image* m) : n(n_), mask(m) {}
-  void begin(int workers) override { sums.assign(workers, std::vector<int64_t>(n, 0)); }
-  static int64_t fixed(float w) { return int64_t(double(w) * kVoteScale + 0.5); }  // w >= 0
-  void visit(int worker, int x, int y, uint32_t g, float w) override {
-    if (mask && !(mask->at(x, y) > 0.5f)) return;
-    sums[worker][g] += fixed(w);
-  }
-  // One call per 8 pixels of a row (the rasteriser's lane group).
-  void visit_row8(int worker, int x_base, int y, uint32_t g, const float* w, unsigned lanes) override {
-    const float* m = mask ? &mask->data[size_t(y) * mask->width] : nullptr;
-    int64_t sum = 0;
-    for (int i = 0; i < 8; ++i)
-      if ((lanes >> i) & 1u)
-        if (!m || m[x_base + i] > 0.5f) sum += fixed(w[i]);
-    sums[worker][g] += sum;
-  }
-  ViewVotes collect() const {
-    ViewVotes v;
-    for (size_t g = 0; g < n; ++g) {
-      int64_t s = 0;
-      for (const auto& w : sums) s += w[g];
-      if (s != 0) {
-        v.index.push_back(uint32_t(g));
-        v.weight.push_back(s);
-      }
-    }
-    return v;
-  }
-};
-
 RenderSettings vote_settings(int threads) {
   RenderSettings s;
   s.color = false;
@@ -64,21 +28,14 @@ std::vector<uint8_t> tiles_under_mask(const Image& mask, int grid_x, int grid_y)
 }
 
 ViewVotes total_votes(const PreparedFrame& frame, int threads) {
-  VoteVisitor v(frame.gaussians, nullptr);
-  rasterize(frame, vote_settings(threads), nullptr, &v);
-  return v.collect();
+  return weight_sums(frame, nullptr, vote_settings(threads));
 }
 
 ViewVotes masked_votes(const PreparedFrame& frame, const Image& mask, int threads, const std::vector<float>* values,
                        Image* coverage, bool full_coverage) {
   if (mask.width != frame.camera.width || mask.height != frame.camera.height || mask.channels != 1)
     throw Error("masked_votes: mask does not match the view's resolution");
-  VoteVisitor v(frame.gaussians, &mask);
-  std::vector<uint8_t> tiles = tiles_under_mask(mask, frame.grid_x, frame.grid_y);
-  if (full_coverage && values) std::fill(tiles.begin(), tiles.end(), uint8_t(1));
-  RenderOutput r = rasterize(frame, vote_settings(threads), values, &v, &tiles);
-  if (coverage && values) *coverage = std::move(r.value);
-  return v.collect();
+  return weight_sums(frame, &mask, vote_settings(threads), values, coverage, full_coverage && values);
 }
 
 void VoteAccumulator::add(const ViewVotes& positive, const ViewVotes& total, int sign, const ViewVotes* neutral) {

@@ -1,8 +1,8 @@
 // Visibility-based Gaussian voting (VGV). Pixels vote for Gaussians with their
 // alpha-blending weight w_ij = alpha_j prod_{l<j} (1 - alpha_l): positive votes
 // P_j = sum over masked pixels, all votes A_j = sum over every pixel of the accepted views.
-// Sums are kept in 2^-24 fixed point, so they are exact, independent of thread count and
-// order, and a view's contribution can be removed again bit-exactly.
+// Sums are kept in 2^-24 fixed point (render/visibility.h), so they are exact, independent
+// of thread count and order, and a view's contribution can be removed again bit-exactly.
 #pragma once
 
 #include <cstdint>
@@ -10,21 +10,20 @@
 
 #include "core/image.h"
 #include "render/rasterizer.h"
+#include "render/visibility.h"
 
 namespace isegman::segment {
 
-constexpr double kVoteScale = 16777216.0;  // 2^24 fixed-point units per unit weight
+constexpr double kVoteScale = kWeightScale;  // 2^24 fixed-point units per unit weight
 
-// One view's sparse contribution: Gaussian indices with their summed weights.
-struct ViewVotes {
-  std::vector<uint32_t> index;
-  std::vector<int64_t> weight;  // fixed point
-};
+// One view's sparse contribution: Gaussian indices (ascending) with their summed weights.
+using ViewVotes = GaussianWeights;
 
-// All votes of a view (mask independent): one full pass over the prepared frame.
+// All votes of a view (mask independent): one full pass over the prepared frame, or, for
+// a compacted frame (compact_frame), its stored per-tile sums.
 ViewVotes total_votes(const PreparedFrame& frame, int threads = 0);
 // Votes from the pixels where mask > 0.5 (mask at the frame's resolution); only the tiles
-// the mask touches are rasterised.
+// the mask touches are rasterised (of a compacted frame: only those it covers partly).
 // With `values` (one per Gaussian, e.g. the current selection as 0/1) the same pass also
 // renders their coverage into `coverage` (1 channel, the frame's size; 0 outside the
 // tiles the mask touches): inspection and voting share one rasterisation.

@@ -1,0 +1,58 @@
+// Internals shared by rasterizer.cc and visibility.cc, not an API: the projected splat,
+// the prepared frame's storage and one pass over a frame's tiles.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "render/rasterizer.h"
+
+namespace isegman {
+
+// A projected Gaussian, as the tile loop reads it. 40 bytes: a prepared frame of a large
+// scene holds millions, so colours live apart (frames kept for voting drop them).
+struct Splat {
+  float mx, my;          // centre, index coordinates
+  float ca, cb, cc;      // conic
+  float opacity;         // activated
+  float depth;
+  uint32_t index;        // Gaussian index in the scene
+  uint16_t px0, py0, px1, py1;  // pixel box outside which alpha < 1/255 (inclusive, clipped)
+};
+
+struct PreparedFrame::Data {
+  std::vector<Splat> splats;          // visible Gaussians in depth order
+  std::vector<float> rgb;             // 3 per splat; empty: the frame renders black
+  std::vector<uint32_t> tile_start;   // tiles + 1 offsets into tile_list
+  std::vector<uint32_t> tile_list;    // per tile: indices into splats, front to back
+  // Set by compact_frame: per tile_list entry, its fixed-point weights summed over the
+  // tile's pixels; and the alpha_max the compaction is exact for.
+  std::vector<uint32_t> entry_weight;
+  bool compact = false;
+  float alpha_max = 0;
+};
+
+struct PreparedFrameAccess {
+  static PreparedFrame::Data& data(PreparedFrame& f) { return *f.data_; }
+  static const PreparedFrame::Data& data(const PreparedFrame& f) { return *f.data_; }
+  static void adopt(PreparedFrame& f, std::unique_ptr<PreparedFrame::Data> d) { f.data_ = std::move(d); }
+};
+
+// What one pass over a frame's tiles computes besides the images.
+struct TilePass {
+  const std::vector<float>* values = nullptr;
+  ContributionVisitor* visitor = nullptr;
+  const std::vector<uint8_t>* tile_mask = nullptr;  // only these tiles (nullptr: all)
+  // Per-entry sums: after each rasterised tile, on_tile gets for every entry of the
+  // tile's list the fixed_weight()s summed over its pixels where sum_mask > 0.5 (all
+  // pixels when sum_mask is null), and whether the entry was blended at a pixel that was
+  // still open (contributed, or ended it): an entry that never was changes no pixel.
+  const Image* sum_mask = nullptr;
+  std::function<void(int worker, size_t tile, const uint32_t* sums, const uint8_t* blended)> on_tile;
+};
+
+RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, const TilePass& pass);
+
+}  // namespace isegman

@@ -1,0 +1,171 @@
+#include "render/visibility.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "render/radix_sort.h"
+#include "render/tile_kernel.h"
+
+namespace isegman {
+
+RenderOutput compact_frame(PreparedFrame& frame, const RenderSettings& s, bool keep_colors) {
+  PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
+  if (d.compact) {
+    RenderOutput out = rasterize(frame, s);
+    if (!keep_colors) std::vector<float>().swap(d.rgb);
+    return out;
+  }
+  const size_t entries = d.tile_list.size();
+  std::vector<uint32_t> sums(entries);
+  std::vector<uint8_t> blended(entries);
+  TilePass pass;
+  pass.on_tile = [&](int, size_t t, const uint32_t* su, const uint8_t* bl) {
+    const size_t b = d.tile_start[t], n = d.tile_start[t + 1] - b;
+    std::copy(su, su + n, sums.begin() + std::ptrdiff_t(b));
+    std::copy(bl, bl + n, blended.begin() + std::ptrdiff_t(b));
+  };
+  RenderOutput out = run_tiles(frame, s, pass);
+
+  // Keep the blended entries, and the splats they refer to (still in depth order).
+  const size_t tiles = d.tile_start.size() - 1;
+  std::vector<uint8_t> used(d.splats.size(), 0);
+  std::vector<uint32_t> start(tiles + 1, 0);
+  size_t kept = 0;
+  for (size_t t = 0; t < tiles; ++t) {
+    for (size_t e = d.tile_start[t]; e < d.tile_start[t + 1]; ++e)
+      if (blended[e]) {
+        ++kept;
+        used[d.tile_list[e]] = 1;
+      }
+    start[t + 1] = uint32_t(kept);
+  }
+  std::vector<uint32_t> remap(d.splats.size(), 0);
+  size_t live = 0;
+  for (size_t i = 0; i < used.size(); ++i)
+    if (used[i]) remap[i] = uint32_t(live++);
+  std::vector<Splat> splats(live);
+  std::vector<float> rgb(keep_colors && !d.rgb.empty() ? 3 * live : 0);
+  for (size_t i = 0; i < used.size(); ++i)
+    if (used[i]) {
+      splats[remap[i]] = d.splats[i];
+      if (!rgb.empty())
+        for (int c = 0; c < 3; ++c) rgb[3 * size_t(remap[i]) + c] = d.rgb[3 * i + c];
+    }
+  std::vector<uint32_t> list(kept), weight(kept);
+  for (size_t e = 0, k = 0; e < entries; ++e)
+    if (blended[e]) {
+      list[k] = remap[d.tile_list[e]];
+      weight[k++] = sums[e];
+    }
+  d.splats = std::move(splats);
+  d.rgb = std::move(rgb);
+  d.tile_start = std::move(start);
+  d.tile_list = std::move(list);
+  d.entry_weight = std::move(weight);
+  d.compact = true;
+  d.alpha_max = s.alpha_max;
+  frame.stats.tile_pairs = kept;
+  return out;
+}
+
+bool is_compact(const PreparedFrame& frame) { return PreparedFrameAccess::data(frame).compact; }
+
+size_t frame_bytes(const PreparedFrame& frame) {
+  const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
+  return sizeof(PreparedFrame) + sizeof(PreparedFrame::Data) + d.splats.capacity() * sizeof(Splat) +
+         (d.rgb.capacity() + d.tile_start.capacity() + d.tile_list.capacity() + d.entry_weight.capacity()) * 4;
+}
+
+GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const RenderSettings& settings,
+                            const std::vector<float>* values, Image* value_image, bool all_tiles) {
+  const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
+  const int gx = frame.grid_x, gy = frame.grid_y, W = frame.camera.width, H = frame.camera.height;
+  const size_t tiles = size_t(gx) * gy;
+  // Tiles the mask touches, and those it covers entirely.
+  std::vector<uint8_t> touched(tiles, mask ? 0 : 1), full(tiles, mask ? 0 : 1);
+  if (mask) {
+    if (mask->width != W || mask->height != H || mask->channels != 1)
+      throw Error("visibility: the pixel mask does not match the view's resolution");
+    std::vector<uint32_t> on(tiles, 0);
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x)
+        if (mask->data[size_t(y) * W + x] > 0.5f) ++on[size_t(y / kTileSize) * gx + x / kTileSize];
+    for (size_t t = 0; t < tiles; ++t) {
+      const int tx = int(t % gx), ty = int(t / gx);
+      const uint32_t pixels = uint32_t((std::min(W, (tx + 1) * kTileSize) - tx * kTileSize) *
+                                       (std::min(H, (ty + 1) * kTileSize) - ty * kTileSize));
+      touched[t] = on[t] > 0;
+      full[t] = on[t] == pixels;
+    }
+  }
+  // Fully covered tiles of a compacted frame come from its stored sums, unless the pass
+  // renders values there anyway.
+  const bool stored = d.compact;
+  std::vector<uint8_t> raster(tiles, 0);
+  bool any_raster = false;
+  for (size_t t = 0; t < tiles; ++t) {
+    raster[t] = (values && (all_tiles || touched[t])) || (touched[t] && !(stored && full[t]));
+    any_raster |= raster[t] != 0;
+  }
+  const int slots = resolve_threads(settings.threads);
+  std::vector<std::vector<uint32_t>> keys(static_cast<size_t>(slots)), sums(static_cast<size_t>(slots));
+  auto add_pairs = [&](int w, size_t t, const uint32_t* entry_sums) {
+    std::vector<uint32_t>& k = keys[size_t(w)];
+    std::vector<uint32_t>& s = sums[size_t(w)];
+    for (size_t e = d.tile_start[t]; e < d.tile_start[t + 1]; ++e) {
+      const uint32_t v = entry_sums[e - d.tile_start[t]];
+      if (v) {
+        k.push_back(d.splats[d.tile_list[e]].index);
+        s.push_back(v);
+      }
+    }
+  };
+  if (any_raster) {
+    RenderSettings rs = settings;
+    rs.color = false;
+    rs.depth = false;
+    TilePass pass;
+    pass.values = values;
+    pass.tile_mask = &raster;
+    pass.sum_mask = mask;
+    pass.on_tile = [&](int w, size_t t, const uint32_t* entry_sums, const uint8_t*) {
+      if (touched[t]) add_pairs(w, t, entry_sums);
+    };
+    RenderOutput r = run_tiles(frame, rs, pass);
+    if (values && value_image) *value_image = std::move(r.value);
+  } else if (values && value_image) {
+    *value_image = Image(W, H, 1);
+  }
+  if (stored)
+    parallel_for(tiles, slots, [&](int w, size_t t) {
+      if (touched[t] && full[t] && !raster[t]) add_pairs(w, t, d.entry_weight.data() + d.tile_start[t]);
+    });
+
+  // Sum per Gaussian: sort the (Gaussian, sum) pairs by Gaussian (integer sums, so the
+  // order they were found in does not matter).
+  size_t pairs = 0;
+  for (const auto& k : keys) pairs += k.size();
+  std::vector<uint32_t> all_keys, position(pairs), all_sums;
+  all_keys.reserve(pairs);
+  all_sums.reserve(pairs);
+  for (int w = 0; w < slots; ++w) {
+    all_keys.insert(all_keys.end(), keys[size_t(w)].begin(), keys[size_t(w)].end());
+    all_sums.insert(all_sums.end(), sums[size_t(w)].begin(), sums[size_t(w)].end());
+    std::vector<uint32_t>().swap(keys[size_t(w)]);
+    std::vector<uint32_t>().swap(sums[size_t(w)]);
+  }
+  for (size_t i = 0; i < pairs; ++i) position[i] = uint32_t(i);
+  radix_sort_pairs(all_keys, position);
+  GaussianWeights out;
+  for (size_t i = 0; i < pairs;) {
+    const uint32_t g = all_keys[i];
+    int64_t total = 0;
+    for (; i < pairs && all_keys[i] == g; ++i) total += all_sums[position[i]];
+    out.index.push_back(g);
+    out.weight.push_back(total);
+  }
+  return out;
+}
+
+}  // namespace isegman

@@ -1,0 +1,47 @@
+// Exact per-Gaussian visibility of a prepared frame: the blending weights w = alpha * T
+// each Gaussian receives, summed over a set of pixels. Each weight is rounded to 2^-24
+// fixed point before it is summed, so sums are integers: exact, independent of thread
+// count and order, and removable again bit for bit (segment/votes.h builds on this).
+//
+// A frame kept for many such passes is compacted once: the (tile, Gaussian) entries that
+// were never blended at a pixel still open (hidden behind pixels that had already ended,
+// or below alpha 1/255 wherever they reach) are dropped, which changes no output of any
+// later pass, and every remaining entry keeps its weight summed over its whole tile. A
+// pixel mask then costs a rasterisation only for the tiles it covers partly; the tiles
+// it covers fully are read from those sums.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/image.h"
+#include "render/rasterizer.h"
+
+namespace isegman {
+
+constexpr double kWeightScale = 16777216.0;  // 2^24 fixed-point units per unit weight
+inline int64_t fixed_weight(float w) { return int64_t(double(w) * kWeightScale + 0.5); }  // w >= 0
+
+// Per-Gaussian sums, ascending Gaussian index, zero sums left out.
+struct GaussianWeights {
+  std::vector<uint32_t> index;
+  std::vector<int64_t> weight;  // fixed point
+};
+
+// Compacts `frame` (see above) with one full pass, which also renders it: returns what
+// rasterize(frame, settings) would. The frame then renders only with settings.alpha_max;
+// its colours are kept only when `keep_colors` (frames kept for voting need none).
+RenderOutput compact_frame(PreparedFrame& frame, const RenderSettings& settings, bool keep_colors = false);
+bool is_compact(const PreparedFrame& frame);
+// Bytes the frame holds.
+size_t frame_bytes(const PreparedFrame& frame);
+
+// Weights summed over the pixels where mask > 0.5 (mask at the frame's resolution, one
+// channel), or over every pixel without a mask. With `values` (one per Gaussian) the
+// same pass renders their blend into `value_image` over the tiles the mask touches (all
+// tiles with `all_tiles`), as rasterize() does.
+GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const RenderSettings& settings,
+                            const std::vector<float>* values = nullptr, Image* value_image = nullptr,
+                            bool all_tiles = false);
+
+}  // namespace isegman

@@ -1,0 +1,155 @@
+#include "render/visibility.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "core/error.h"
+
+namespace isegman {
+namespace {
+
+// A dense random cloud: most pixels end (transmittance < 1e-4) long before the back of
+// the cloud, so compaction has hidden entries to drop.
+GaussianScene dense_cloud(size_t n, unsigned seed) {
+  GaussianScene g;
+  g.sh_degree = 1;
+  uint64_t s = seed;
+  auto rnd = [&] {
+    s = s * 6364136223846793005ull + 1442695040888963407ull;
+    return double(s >> 11) / 9007199254740992.0;
+  };
+  for (size_t i = 0; i < n; ++i) {
+    g.positions.insert(g.positions.end(), {float(rnd() * 2 - 1), float(rnd() * 2 - 1), float(rnd() * 2 - 1)});
+    for (int a = 0; a < 3; ++a) g.scales.push_back(float(std::log(0.01 + 0.07 * rnd())));
+    for (int k = 0; k < 4; ++k) g.rotations.push_back(float(rnd() * 2 - 1));
+    g.opacity.push_back(float(rnd() * 8 - 3));  // logits: opacity 0.05 .. 0.99
+    for (int k = 0; k < 3 * g.coeffs(); ++k) g.sh.push_back(float(k < 3 ? rnd() : 0.3 * (rnd() - 0.5)));
+  }
+  return g;
+}
+
+// The reference: every (pixel, Gaussian) weight from the visitor, rounded and summed.
+struct Reference : ContributionVisitor {
+  const Image* mask;
+  std::vector<std::map<uint32_t, int64_t>> per_worker;
+  explicit Reference(const Image* m) : mask(m) {}
+  void begin(int workers) override { per_worker.assign(size_t(workers), {}); }
+  void visit(int worker, int x, int y, uint32_t g, float w) override {
+    if (mask && !(mask->at(x, y) > 0.5f)) return;
+    per_worker[size_t(worker)][g] += fixed_weight(w);
+  }
+  GaussianWeights sums() const {
+    std::map<uint32_t, int64_t> all;
+    for (const auto& m : per_worker)
+      for (const auto& [g, w] : m) all[g] += w;
+    GaussianWeights out;
+    for (const auto& [g, w] : all)
+      if (w) {
+        out.index.push_back(g);
+        out.weight.push_back(w);
+      }
+    return out;
+  }
+};
+
+GaussianWeights reference_sums(const GaussianScene& g, const Camera& cam, const Image* mask) {
+  Reference ref(mask);
+  render(g, cam, {}, nullptr, &ref);
+  return ref.sums();
+}
+
+void expect_same(const GaussianWeights& a, const GaussianWeights& b) {
+  ASSERT_EQ(a.index, b.index);
+  ASSERT_EQ(a.weight, b.weight);
+}
+
+// A blob and a stripe: tiles fully inside, partly inside and outside.
+Image irregular_mask(int w, int h) {
+  Image m(w, h, 1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const double dx = x - 0.45 * w, dy = y - 0.5 * h;
+      m.at(x, y) = (dx * dx + dy * dy < 0.09 * w * w || (x > 0.8 * w && y % 7 < 4)) ? 1.f : 0.f;
+    }
+  return m;
+}
+
+TEST(Visibility, CompactionChangesNoPixelAndDropsHiddenEntries) {
+  const GaussianScene g = dense_cloud(20000, 5);
+  const Camera cam = Camera::look_at({0.3, -3.2, 0.8}, {0, 0, 0}, {0, 0, 1}, 141, 103, 55);  // partial tiles
+  std::vector<float> values(g.size());
+  for (size_t i = 0; i < values.size(); ++i) values[i] = float(i % 4) * 0.25f;
+  PreparedFrame plain = prepare_frame(g, cam), compact = prepare_frame(g, cam), colored = prepare_frame(g, cam);
+  const RenderOutput full = rasterize(plain);
+  const RenderOutput during = compact_frame(compact, {});
+  EXPECT_EQ(during.color.data, full.color.data);
+  EXPECT_EQ(during.depth.data, full.depth.data);
+  EXPECT_EQ(during.alpha.data, full.alpha.data);
+  compact_frame(colored, {}, true);
+  EXPECT_TRUE(is_compact(compact));
+  EXPECT_FALSE(is_compact(plain));
+  // Hidden entries are dropped, and the frame shrinks.
+  EXPECT_LT(compact.stats.tile_pairs, plain.stats.tile_pairs * 3 / 4);
+  EXPECT_LT(frame_bytes(compact), frame_bytes(plain) * 3 / 4);
+  // Every later pass is bit-identical: values, depth, alpha; colour when it was kept.
+  const RenderOutput a = rasterize(plain, {}, &values), b = rasterize(compact, {}, &values),
+                     c = rasterize(colored, {}, &values);
+  EXPECT_EQ(a.value.data, b.value.data);
+  EXPECT_EQ(a.depth.data, b.depth.data);
+  EXPECT_EQ(a.alpha.data, b.alpha.data);
+  EXPECT_EQ(a.color.data, c.color.data);
+  for (float v : b.color.data) ASSERT_EQ(v, 0.f);  // colours dropped: black
+  // A compaction is exact for one alpha_max only.
+  RenderSettings other;
+  other.alpha_max = 0.999f;
+  EXPECT_THROW(rasterize(compact, other), Error);
+}
+
+TEST(Visibility, SumsMatchTheRoundedWeightsOfEveryPixel) {
+  const GaussianScene g = dense_cloud(12000, 9);
+  const Camera cam = Camera::look_at({-0.4, -3.0, 1.2}, {0, 0, 0}, {0, 0, 1}, 150, 97, 60);
+  const Image mask = irregular_mask(cam.width, cam.height);
+  PreparedFrame plain = prepare_frame(g, cam), compact = prepare_frame(g, cam);
+  compact_frame(compact, {});
+  const GaussianWeights all = reference_sums(g, cam, nullptr), masked = reference_sums(g, cam, &mask);
+  ASSERT_GT(all.index.size(), 1000u);
+  ASSERT_GT(masked.index.size(), 100u);
+  ASSERT_LT(masked.index.size(), all.index.size());
+  RenderSettings one, three;
+  one.threads = 1;
+  three.threads = 3;
+  for (const RenderSettings& s : {one, three}) {
+    expect_same(weight_sums(plain, nullptr, s), all);
+    expect_same(weight_sums(compact, nullptr, s), all);
+    expect_same(weight_sums(plain, &mask, s), masked);
+    expect_same(weight_sums(compact, &mask, s), masked);
+  }
+  // With values the same pass renders their blend over the mask's tiles (every tile
+  // with all_tiles), as rasterize does.
+  std::vector<float> values(g.size());
+  for (size_t i = 0; i < values.size(); ++i) values[i] = (i % 3 == 0) ? 1.f : 0.f;
+  const Image expected = rasterize(plain, {}, &values).value;
+  Image covered;
+  expect_same(weight_sums(compact, &mask, {}, &values, &covered, true), masked);
+  EXPECT_EQ(covered.data, expected.data);
+  expect_same(weight_sums(compact, &mask, {}, &values, &covered, false), masked);
+  int outside = 0;
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      bool touched = false;
+      const int tx = x / kTileSize, ty = y / kTileSize;
+      for (int yy = ty * kTileSize; yy < std::min(cam.height, (ty + 1) * kTileSize) && !touched; ++yy)
+        for (int xx = tx * kTileSize; xx < std::min(cam.width, (tx + 1) * kTileSize); ++xx)
+          if (mask.at(xx, yy) > 0.5f) touched = true;
+      ASSERT_EQ(covered.at(x, y), touched ? expected.at(x, y) : 0.f);
+      outside += !touched;
+    }
+  EXPECT_GT(outside, 0);
+  Image wrong(cam.width + 1, cam.height, 1);
+  EXPECT_THROW(weight_sums(compact, &wrong, {}), Error);
+}
+
+}  // namespace
+}  // namespace isegman
