@@ -444,6 +444,8 @@ RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, cons
   if (want_value) out.value = Image(W, H, 1);
   const int workers = worker_count(tiles, s.threads);
   if (visitor) visitor->begin(workers);
+  // A value-only pass over a compacted frame may take uniform tiles from its stored blends.
+  const bool stored_values = want_value && !visitor && !s.color && !s.depth && !d.value_all.empty();
   std::vector<uint64_t> evaluated(workers, 0), contributed(workers, 0);
   std::vector<TileBuffers> buffers(workers);
   std::vector<std::vector<EntrySum>> entry_buffers(sums ? workers : 0);
@@ -463,7 +465,26 @@ RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, cons
     const size_t count = tile_start[t + 1] - tile_start[t];
     const int x_begin = tx * kTileSize, y_begin = ty * kTileSize;
     const int x_end = std::min(W, x_begin + kTileSize), y_end = std::min(H, y_begin + kTileSize);
-    if (sums) {
+    const bool sums_here = sums && (!pass.sum_tiles || (*pass.sum_tiles)[t]);
+    if (stored_values && !sums_here) {
+      // Every Gaussian of the tile carries 1, or every one 0: the stored blend is the answer.
+      bool ones = true, zeros = true;
+      for (size_t n = 0; n < count && (ones || zeros); ++n) {
+        const float v = vals[splats[list[n]].index];
+        ones &= v == 1.f;
+        zeros &= v == 0.f;
+      }
+      if (ones || zeros) {
+        for (int y = y_begin; y < y_end; ++y)
+          for (int x = x_begin; x < x_end; ++x) {
+            const size_t k = size_t(y) * W + x;
+            out.alpha.data[k] = d.alpha_all[k];
+            out.value.data[k] = ones ? d.value_all[k] : 0.f;
+          }
+        return;
+      }
+    }
+    if (sums_here) {
       uint8_t lanes[2 * kTileSize];
       tile_lanes(pass.sum_mask, x_begin, y_begin, x_end, y_end, lanes);
       std::vector<EntrySum>& e = entry_buffers[w];

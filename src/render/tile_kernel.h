@@ -30,6 +30,10 @@ struct PreparedFrame::Data {
   // Set by compact_frame: per tile_list entry, its fixed-point weights summed over the
   // tile's pixels; and the alpha_max the compaction is exact for.
   std::vector<uint32_t> entry_weight;
+  // Also set by compact_frame: alpha, and the blend of the value 1 for every Gaussian
+  // (sum of w per pixel). A value pass over a tile whose Gaussians all carry 1, or all 0,
+  // is one of these (w * 1 == w and w * 0 == 0 exactly), so it needs no blending.
+  std::vector<float> alpha_all, value_all;
   bool compact = false;
   float alpha_max = 0;
 };
@@ -50,6 +54,7 @@ struct TilePass {
   // pixels when sum_mask is null), and whether the entry was blended at a pixel that was
   // still open (contributed, or ended it): an entry that never was changes no pixel.
   const Image* sum_mask = nullptr;
+  const std::vector<uint8_t>* sum_tiles = nullptr;  // on_tile only for these (nullptr: all)
   std::function<void(int worker, size_t tile, const uint32_t* sums, const uint8_t* blended)> on_tile;
 };
 

@@ -19,13 +19,18 @@ RenderOutput compact_frame(PreparedFrame& frame, const RenderSettings& s, bool k
   const size_t entries = d.tile_list.size();
   std::vector<uint32_t> sums(entries);
   std::vector<uint8_t> blended(entries);
+  const std::vector<float> ones(frame.gaussians, 1.f);
   TilePass pass;
+  pass.values = &ones;
   pass.on_tile = [&](int, size_t t, const uint32_t* su, const uint8_t* bl) {
     const size_t b = d.tile_start[t], n = d.tile_start[t + 1] - b;
     std::copy(su, su + n, sums.begin() + std::ptrdiff_t(b));
     std::copy(bl, bl + n, blended.begin() + std::ptrdiff_t(b));
   };
   RenderOutput out = run_tiles(frame, s, pass);
+  d.alpha_all = out.alpha.data;
+  d.value_all = std::move(out.value.data);
+  out.value = Image();
 
   // Keep the blended entries, and the splats they refer to (still in depth order).
   const size_t tiles = d.tile_start.size() - 1;
@@ -74,7 +79,9 @@ bool is_compact(const PreparedFrame& frame) { return PreparedFrameAccess::data(f
 size_t frame_bytes(const PreparedFrame& frame) {
   const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
   return sizeof(PreparedFrame) + sizeof(PreparedFrame::Data) + d.splats.capacity() * sizeof(Splat) +
-         (d.rgb.capacity() + d.tile_start.capacity() + d.tile_list.capacity() + d.entry_weight.capacity()) * 4;
+         (d.rgb.capacity() + d.tile_start.capacity() + d.tile_list.capacity() + d.entry_weight.capacity() +
+          d.alpha_all.capacity() + d.value_all.capacity()) *
+             4;
 }
 
 GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const RenderSettings& settings,
@@ -102,10 +109,11 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
   // Fully covered tiles of a compacted frame come from its stored sums, unless the pass
   // renders values there anyway.
   const bool stored = d.compact;
-  std::vector<uint8_t> raster(tiles, 0);
+  std::vector<uint8_t> raster(tiles, 0), summed(tiles, 0);
   bool any_raster = false;
   for (size_t t = 0; t < tiles; ++t) {
-    raster[t] = (values && (all_tiles || touched[t])) || (touched[t] && !(stored && full[t]));
+    summed[t] = touched[t] && !(stored && full[t]);
+    raster[t] = summed[t] || (values && (all_tiles || touched[t]));
     any_raster |= raster[t] != 0;
   }
   const int slots = resolve_threads(settings.threads);
@@ -129,9 +137,8 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     pass.values = values;
     pass.tile_mask = &raster;
     pass.sum_mask = mask;
-    pass.on_tile = [&](int w, size_t t, const uint32_t* entry_sums, const uint8_t*) {
-      if (touched[t]) add_pairs(w, t, entry_sums);
-    };
+    pass.sum_tiles = &summed;
+    pass.on_tile = [&](int w, size_t t, const uint32_t* entry_sums, const uint8_t*) { add_pairs(w, t, entry_sums); };
     RenderOutput r = run_tiles(frame, rs, pass);
     if (values && value_image) *value_image = std::move(r.value);
   } else if (values && value_image) {
@@ -139,7 +146,7 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
   }
   if (stored)
     parallel_for(tiles, slots, [&](int w, size_t t) {
-      if (touched[t] && full[t] && !raster[t]) add_pairs(w, t, d.entry_weight.data() + d.tile_start[t]);
+      if (touched[t] && !summed[t]) add_pairs(w, t, d.entry_weight.data() + d.tile_start[t]);
     });
 
   // Sum per Gaussian: sort the (Gaussian, sum) pairs by Gaussian (integer sums, so the

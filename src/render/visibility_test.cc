@@ -101,6 +101,19 @@ TEST(Visibility, CompactionChangesNoPixelAndDropsHiddenEntries) {
   EXPECT_EQ(a.alpha.data, b.alpha.data);
   EXPECT_EQ(a.color.data, c.color.data);
   for (float v : b.color.data) ASSERT_EQ(v, 0.f);  // colours dropped: black
+  // Values that are 1 (or 0) for a whole tile's Gaussians come from the stored blends:
+  // a region of the cloud selected, everything, nothing.
+  RenderSettings value_only;
+  value_only.color = value_only.depth = false;
+  std::vector<float> left(g.size()), all_on(g.size(), 1.f), all_off(g.size(), 0.f);
+  for (size_t i = 0; i < g.size(); ++i) left[i] = g.positions[3 * i] < -0.2f ? 1.f : 0.f;
+  for (const auto* v : {&left, &all_on, &all_off}) {
+    const RenderOutput p = rasterize(plain, value_only, v), q = rasterize(compact, value_only, v);
+    EXPECT_EQ(p.value.data, q.value.data);
+    EXPECT_EQ(p.alpha.data, q.alpha.data);
+    if (v != &left) EXPECT_EQ(q.stats.evaluated, 0u);  // nothing blended
+    else EXPECT_LT(q.stats.evaluated, b.stats.evaluated);
+  }
   // A compaction is exact for one alpha_max only.
   RenderSettings other;
   other.alpha_max = 0.999f;
