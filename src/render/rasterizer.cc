@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -152,7 +153,7 @@ struct EntrySum {
 // Blends Gaussian g into the 8 pixels of one row group starting at column x_base, lanes
 // outside [x0, x1] untouched. The INRIA per-pixel rules, branch-free. Returns the
 // number of pixels that terminated.
-template <bool kVisit, bool kSums>
+template <bool kVisit, bool kSums, bool kShade>
 inline int blend_group(const Splat& g, const float* rgb, float value, float dy, int k0, int x_base, int x0, int x1,
                        int y, float alpha_max, bool want_value, TileBuffers& b, uint64_t& evaluated,
                        uint64_t& contributed, ContributionVisitor* visitor, int worker, unsigned sum_lanes,
@@ -174,20 +175,22 @@ inline int blend_group(const Splat& g, const float* rgb, float value, float dy, 
   const v8i term = valid & (test_T < splat8(kMinTransmittance));
   const v8i contrib = valid & ~term;
   const v8f w = select8(contrib, alpha * T, splat8(0.f));
-  std::memcpy(&C0, b.C[0] + k0, sizeof C0);
-  std::memcpy(&C1, b.C[1] + k0, sizeof C1);
-  std::memcpy(&C2, b.C[2] + k0, sizeof C2);
-  std::memcpy(&D, b.D + k0, sizeof D);
-  C0 += w * splat8(rgb[0]);
-  C1 += w * splat8(rgb[1]);
-  C2 += w * splat8(rgb[2]);
-  D += w * splat8(g.depth);
+  if constexpr (kShade) {  // colour and depth (value and vote passes need neither)
+    std::memcpy(&C0, b.C[0] + k0, sizeof C0);
+    std::memcpy(&C1, b.C[1] + k0, sizeof C1);
+    std::memcpy(&C2, b.C[2] + k0, sizeof C2);
+    std::memcpy(&D, b.D + k0, sizeof D);
+    C0 += w * splat8(rgb[0]);
+    C1 += w * splat8(rgb[1]);
+    C2 += w * splat8(rgb[2]);
+    D += w * splat8(g.depth);
+    std::memcpy(b.C[0] + k0, &C0, sizeof C0);
+    std::memcpy(b.C[1] + k0, &C1, sizeof C1);
+    std::memcpy(b.C[2] + k0, &C2, sizeof C2);
+    std::memcpy(b.D + k0, &D, sizeof D);
+  }
   T = select8(contrib, test_T, T);
   done |= term;
-  std::memcpy(b.C[0] + k0, &C0, sizeof C0);
-  std::memcpy(b.C[1] + k0, &C1, sizeof C1);
-  std::memcpy(b.C[2] + k0, &C2, sizeof C2);
-  std::memcpy(b.D + k0, &D, sizeof D);
   std::memcpy(b.T + k0, &T, sizeof T);
   std::memcpy(b.done + k0, &done, sizeof done);
   if (want_value) {
@@ -233,7 +236,7 @@ void tile_lanes(const Image* mask, int x_begin, int y_begin, int x_end, int y_en
     }
 }
 
-template <bool kVisit, bool kSums>
+template <bool kVisit, bool kSums, bool kShade>
 void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, const uint32_t* list, size_t count,
                  int width, int height, const RenderSettings& s, const float* values, ContributionVisitor* visitor,
                  int worker, TileBuffers& b, uint64_t& evaluated_out, uint64_t& contributed_out,
@@ -252,8 +255,10 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, 
   const int pixels = (x_end - x_begin) * (y_end - y_begin);
   constexpr int kPx = kTileSize * kTileSize;
   std::fill(b.T, b.T + kPx, 1.f);
-  for (auto& c : b.C) std::fill(c, c + kPx, 0.f);
-  std::fill(b.D, b.D + kPx, 0.f);
+  if (kShade) {
+    for (auto& c : b.C) std::fill(c, c + kPx, 0.f);
+    std::fill(b.D, b.D + kPx, 0.f);
+  }
   std::fill(b.V, b.V + kPx, 0.f);
   std::fill(b.done, b.done + kPx, 0);
   int finished = 0;
@@ -273,7 +278,7 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, 
         const int xb = x_begin + half * kLanes;
         if (xb > x1 || xb + kLanes - 1 < x0) continue;
         const unsigned sum_lanes = kSums ? lanes[(y - y_begin) * 2 + half] : 0u;
-        finished += blend_group<kVisit, kSums>(g, col, value, dy, row + half * kLanes, xb, x0, x1, y, s.alpha_max,
+        finished += blend_group<kVisit, kSums, kShade>(g, col, value, dy, row + half * kLanes, xb, x0, x1, y, s.alpha_max,
                                                want_value, b, evaluated, contributed, visitor, worker, sum_lanes,
                                                entry);
       }
@@ -445,6 +450,7 @@ RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, cons
   const int workers = worker_count(tiles, s.threads);
   if (visitor) visitor->begin(workers);
   // A value-only pass over a compacted frame may take uniform tiles from its stored blends.
+  const bool shade = s.color || s.depth;
   const bool stored_values = want_value && !visitor && !s.color && !s.depth && !d.value_all.empty();
   std::vector<uint64_t> evaluated(workers, 0), contributed(workers, 0);
   std::vector<TileBuffers> buffers(workers);
@@ -466,6 +472,15 @@ RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, cons
     const int x_begin = tx * kTileSize, y_begin = ty * kTileSize;
     const int x_end = std::min(W, x_begin + kTileSize), y_end = std::min(H, y_begin + kTileSize);
     const bool sums_here = sums && (!pass.sum_tiles || (*pass.sum_tiles)[t]);
+    auto with_shade = [&](auto visit, auto sum, const uint8_t* lanes, EntrySum* entries) {
+      constexpr bool kV = decltype(visit)::value, kS = decltype(sum)::value;
+      if (shade)
+        raster_tile<kV, kS, true>(tx, ty, splats.data(), rgb, list, count, W, H, s, vals, visitor, w, b, evaluated[w],
+                                  contributed[w], lanes, entries);
+      else
+        raster_tile<kV, kS, false>(tx, ty, splats.data(), rgb, list, count, W, H, s, vals, visitor, w, b,
+                                   evaluated[w], contributed[w], lanes, entries);
+    };
     if (stored_values && !sums_here) {
       // Every Gaussian of the tile carries 1, or every one 0: the stored blend is the answer.
       bool ones = true, zeros = true;
@@ -489,12 +504,8 @@ RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, cons
       tile_lanes(pass.sum_mask, x_begin, y_begin, x_end, y_end, lanes);
       std::vector<EntrySum>& e = entry_buffers[w];
       e.assign(count, EntrySum{});
-      if (visitor)
-        raster_tile<true, true>(tx, ty, splats.data(), rgb, list, count, W, H, s, vals, visitor, w, b, evaluated[w],
-                                contributed[w], lanes, e.data());
-      else
-        raster_tile<false, true>(tx, ty, splats.data(), rgb, list, count, W, H, s, vals, nullptr, w, b,
-                                 evaluated[w], contributed[w], lanes, e.data());
+      if (visitor) with_shade(std::true_type{}, std::true_type{}, lanes, e.data());
+      else with_shade(std::false_type{}, std::true_type{}, lanes, e.data());
       std::vector<uint32_t>& so = sum_out[w];
       std::vector<uint8_t>& bo = blended_out[w];
       so.resize(count);
@@ -505,11 +516,9 @@ RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, cons
       }
       pass.on_tile(w, t, so.data(), bo.data());
     } else if (visitor) {
-      raster_tile<true, false>(tx, ty, splats.data(), rgb, list, count, W, H, s, vals, visitor, w, b, evaluated[w],
-                               contributed[w], nullptr, nullptr);
+      with_shade(std::true_type{}, std::false_type{}, nullptr, nullptr);
     } else {
-      raster_tile<false, false>(tx, ty, splats.data(), rgb, list, count, W, H, s, vals, nullptr, w, b, evaluated[w],
-                                contributed[w], nullptr, nullptr);
+      with_shade(std::false_type{}, std::false_type{}, nullptr, nullptr);
     }
     for (int y = y_begin; y < y_end; ++y)
       for (int x = x_begin; x < x_end; ++x) {
