@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/compressed_ply.h"
+#include "io/mapped_file.h"
 #include "io/ply.h"
 #include "io/scene_loader.h"
 #include "io/sog.h"
@@ -89,11 +90,11 @@ SplatFormat detect_splat_format(const uint8_t* data, size_t size, const std::str
 }
 
 GaussianScene parse_gaussians(const uint8_t* data, size_t size, SplatFormat format, const std::string& source,
-                              std::vector<std::string>* notes) {
+                              std::vector<std::string>* notes, const std::function<void(size_t, size_t)>& parsed) {
   switch (format) {
     case SplatFormat::kPly: {
       PlyReadReport report;
-      GaussianScene s = parse_ply(data, size, source, &report);
+      GaussianScene s = parse_ply(data, size, source, &report, parsed);
       if (notes)
         for (const auto& n : report.notes) notes->push_back(source + ": " + n);
       return s;
@@ -121,15 +122,18 @@ LoadedGaussians load_gaussians(const std::string& path) {
   } else {
     l.file = path;
   }
-  const std::vector<uint8_t> bytes = read_file_bytes(l.file);
-  l.format = detect_splat_format(bytes.data(), bytes.size(), l.file);
+  // Mapped, not read: a PLY parse drops the pages it has stored, so the file and the
+  // scene are never both in memory.
+  const MappedFile file(l.file);
+  l.format = detect_splat_format(file.data(), file.size(), l.file);
   SplatFormat named;
   if (format_from_name(l.file, named) && named != l.format &&
       !(named == SplatFormat::kCompressedPly && l.format == SplatFormat::kPly) &&
       !(named == SplatFormat::kPly && l.format == SplatFormat::kCompressedPly))
     l.notes.push_back(l.file + ": named " + fs::path(l.file).extension().string() + " but its content is " +
                       splat_format_name(l.format) + "; read as " + splat_format_name(l.format));
-  l.scene = parse_gaussians(bytes.data(), bytes.size(), l.format, l.file, &l.notes);
+  l.scene = parse_gaussians(file.data(), file.size(), l.format, l.file, &l.notes,
+                            [&](size_t offset, size_t length) { file.release(offset, length); });
   return l;
 }
 

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,9 +25,11 @@ bool format_keeps_sh(SplatFormat f);
 // Recognises file bytes; throws Error(source, ...) when they are no splat format.
 SplatFormat detect_splat_format(const uint8_t* data, size_t size, const std::string& source);
 
-// Decodes file bytes in the given format (`notes` gets what the reader tolerated).
+// Decodes file bytes in the given format (`notes` gets what the reader tolerated;
+// `parsed`, for PLY: byte ranges that will not be read again, see parse_ply).
 GaussianScene parse_gaussians(const uint8_t* data, size_t size, SplatFormat format, const std::string& source,
-                              std::vector<std::string>* notes = nullptr);
+                              std::vector<std::string>* notes = nullptr,
+                              const std::function<void(size_t offset, size_t length)>& parsed = {});
 
 struct LoadedGaussians {
   GaussianScene scene;

@@ -7,7 +7,9 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "io/atomic_file.h"
+#include "io/mapped_file.h"
 
 namespace isegman {
 namespace {
@@ -122,7 +124,8 @@ class AsciiTokens {
 
 }  // namespace
 
-GaussianScene parse_ply(const uint8_t* data, size_t size, const std::string& src, PlyReadReport* report) {
+GaussianScene parse_ply(const uint8_t* data, size_t size, const std::string& src, PlyReadReport* report,
+                        const std::function<void(size_t, size_t)>& parsed) {
   // ---- header ----
   size_t pos = 0;
   auto next_line = [&](std::string& line) -> bool {
@@ -332,7 +335,34 @@ GaussianScene parse_ply(const uint8_t* data, size_t size, const std::string& src
     if (fixed_stride && size_t(end - p) < n * stride)
       throw Error(src, "truncated: expected " + std::to_string(n * stride) + " bytes of Gaussian data, found " +
                            std::to_string(end - p));
-    for (size_t i = 0; i < n; ++i) {
+    // Fixed-size records (the usual case): in parallel, in blocks of rows, each block's
+    // bytes handed to `parsed` once it is stored.
+    auto store_row = [&](size_t i, const uint8_t* row) {
+      for (size_t k = 0; k < vert.props.size(); ++k) {
+        const Property& q = vert.props[k];
+        const Slot& s = slots[k];
+        if (s.target == Target::Extra) {
+          uint8_t* dst = scene.extras[s.index].data.data() + i * q.size;
+          for (int b = 0; b < q.size; ++b) dst[b] = swap ? row[q.size - 1 - b] : row[b];
+        } else if (q.type == PlyType::Float32 && !swap) {
+          float v;
+          std::memcpy(&v, row, 4);  // float -> double -> float is exact
+          store(i, s, v);
+        } else {
+          store(i, s, load_scalar(row, q.type, swap));
+        }
+        row += q.size;
+      }
+    };
+    if (fixed_stride) {
+      const uint8_t* base = p;
+      parallel_chunks(n, 65536, 0, [&](int, size_t a, size_t e) {
+        for (size_t i = a; i < e; ++i) store_row(i, base + i * stride);
+        if (parsed) parsed(size_t(base - data) + a * stride, (e - a) * stride);
+      });
+      p = base + n * stride;
+    }
+    for (size_t i = 0; i < n && !fixed_stride; ++i) {
       for (size_t k = 0; k < vert.props.size(); ++k) {
         const Property& q = vert.props[k];
         if (q.is_list) {
@@ -403,8 +433,11 @@ GaussianScene parse_ply(const uint8_t* data, size_t size, const std::string& src
 }
 
 GaussianScene read_ply(const std::string& path, PlyReadReport* report) {
-  std::vector<uint8_t> bytes = read_file_bytes(path);
-  return parse_ply(bytes.data(), bytes.size(), path, report);
+  // Mapped, not read: the parse drops what it has stored, so the file and the scene are
+  // never both in memory.
+  const MappedFile file(path);
+  return parse_ply(file.data(), file.size(), path, report,
+                   [&](size_t offset, size_t length) { file.release(offset, length); });
 }
 
 std::vector<uint8_t> serialize_ply(const GaussianScene& s) {

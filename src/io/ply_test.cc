@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <cstring>
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <random>
 
 #include "core/error.h"
@@ -68,6 +70,25 @@ TEST(Ply, BinaryRoundTripIsBitExactForEveryDegree) {
     expect_same(s, r);
     EXPECT_EQ(serialize_ply(r), bytes) << "degree " << d;  // re-serialising is byte-identical
   }
+}
+
+TEST(Ply, LargeFilesParseInParallelBlocksAndReportEveryByteOnce) {
+  // More rows than one parallel block (65536), read from a file as every command does.
+  GaussianScene s = random_scene(150001, 1, 3);
+  const fs::path path = fs::temp_directory_path() / ("isegman-ply-large-" + std::to_string(::getpid()) + ".ply");
+  write_ply(path.string(), s);
+  expect_same(s, read_ply(path.string()));
+  const std::vector<uint8_t> bytes = read_file_bytes(path.string());
+  fs::remove(path);
+  std::vector<int> seen(bytes.size(), 0);
+  std::mutex m;
+  GaussianScene r = parse_ply(bytes.data(), bytes.size(), "mem", nullptr, [&](size_t offset, size_t length) {
+    std::lock_guard<std::mutex> lock(m);
+    for (size_t i = offset; i < offset + length; ++i) ++seen[i];
+  });
+  expect_same(s, r);
+  const size_t header = bytes.size() - s.size() * (bytes.size() / s.size());  // records are fixed size
+  for (size_t i = 0; i < bytes.size(); ++i) ASSERT_EQ(seen[i], i < header ? 0 : 1) << "byte " << i;
 }
 
 TEST(Ply, FRestIsChannelMajor) {

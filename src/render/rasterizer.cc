@@ -366,6 +366,9 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
     });
   }
   std::vector<uint32_t>().swap(order);
+  // Kept for the next frame only while small: a large scene's would hold ~60 bytes per
+  // Gaussian for as long as the thread lives.
+  if (visible > (size_t(1) << 20)) std::vector<std::vector<Projected>>().swap(chunk_out);
   // Counting sort into tiles, in parallel over contiguous (depth-ordered) slices: slice c
   // writes after slices < c in every tile, so each tile list stays depth-sorted and the
   // result does not depend on the thread count.
