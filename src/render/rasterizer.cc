@@ -29,6 +29,7 @@ constexpr float kMinTransmittance = 1e-4f;
 // (needed only for binning).
 struct Projected {
   Splat splat;
+  float depth;
   float rgb[3];
   uint16_t tx0, ty0, tx1, ty1;  // tile rect [tx0, tx1) x [ty0, ty1)
 };
@@ -125,7 +126,7 @@ bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera
   out.cb = f.conic_b;
   out.cc = f.conic_c;
   out.opacity = opacity;
-  out.depth = f.depth;
+  proj.depth = f.depth;
   out.index = uint32_t(i);
   if (s.color) {
     float dx = p[0] - cam.center[0], dy = p[1] - cam.center[1], dz = p[2] - cam.center[2];
@@ -154,7 +155,7 @@ struct EntrySum {
 // outside [x0, x1] untouched. The INRIA per-pixel rules, branch-free. Returns the
 // number of pixels that terminated.
 template <bool kVisit, bool kSums, bool kShade>
-inline int blend_group(const Splat& g, const float* rgb, float value, float dy, int k0, int x_base, int x0, int x1,
+inline int blend_group(const Splat& g, const float* rgb, float depth, float value, float dy, int k0, int x_base, int x0, int x1,
                        int y, float alpha_max, bool want_value, TileBuffers& b, uint64_t& evaluated,
                        uint64_t& contributed, ContributionVisitor* visitor, int worker, unsigned sum_lanes,
                        EntrySum& entry) {
@@ -183,7 +184,7 @@ inline int blend_group(const Splat& g, const float* rgb, float value, float dy, 
     C0 += w * splat8(rgb[0]);
     C1 += w * splat8(rgb[1]);
     C2 += w * splat8(rgb[2]);
-    D += w * splat8(g.depth);
+    D += w * splat8(depth);
     std::memcpy(b.C[0] + k0, &C0, sizeof C0);
     std::memcpy(b.C[1] + k0, &C1, sizeof C1);
     std::memcpy(b.C[2] + k0, &C2, sizeof C2);
@@ -237,7 +238,8 @@ void tile_lanes(const Image* mask, int x_begin, int y_begin, int x_end, int y_en
 }
 
 template <bool kVisit, bool kSums, bool kShade>
-void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, const uint32_t* list, size_t count,
+void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, const float* depths,
+                 const uint32_t* list, size_t count,
                  int width, int height, const RenderSettings& s, const float* values, ContributionVisitor* visitor,
                  int worker, TileBuffers& b, uint64_t& evaluated_out, uint64_t& contributed_out,
                  const uint8_t* lanes, EntrySum* entries) {
@@ -266,6 +268,7 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, 
   for (size_t n = 0; n < count && finished < pixels; ++n) {
     const Splat& g = splats[list[n]];
     const float* col = rgb ? rgb + 3 * size_t(list[n]) : kBlack;
+    const float depth = kShade ? depths[list[n]] : 0.f;
     const float value = want_value ? values[g.index] : 0.f;
     EntrySum& entry = kSums ? entries[n] : unused;
     // Pixel box of this Gaussian inside the tile; columns past the image edge never count.
@@ -278,7 +281,7 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, 
         const int xb = x_begin + half * kLanes;
         if (xb > x1 || xb + kLanes - 1 < x0) continue;
         const unsigned sum_lanes = kSums ? lanes[(y - y_begin) * 2 + half] : 0u;
-        finished += blend_group<kVisit, kSums, kShade>(g, col, value, dy, row + half * kLanes, xb, x0, x1, y, s.alpha_max,
+        finished += blend_group<kVisit, kSums, kShade>(g, col, depth, value, dy, row + half * kLanes, xb, x0, x1, y, s.alpha_max,
                                                want_value, b, evaluated, contributed, visitor, worker, sum_lanes,
                                                entry);
       }
@@ -340,12 +343,13 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
     std::vector<uint32_t> depth_keys(visible);
     size_t k = 0;
     for (const auto& v : chunk_out)
-      for (const Projected& p : v) std::memcpy(&depth_keys[k++], &p.splat.depth, 4);
+      for (const Projected& p : v) std::memcpy(&depth_keys[k++], &p.depth, 4);
     radix_sort_pairs(depth_keys, order);
   }
   std::vector<Splat>& splats = d.splats;
   splats.resize(visible);
   if (s.color) d.rgb.resize(3 * visible);
+  d.depth.resize(visible);
   struct Rect {
     uint16_t tx0, ty0, tx1, ty1;
   };
@@ -359,6 +363,7 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
       for (size_t j = a; j < e; ++j) {
         const Projected& p = *flat[order[j]];
         splats[j] = p.splat;
+        d.depth[j] = p.depth;
         rects[j] = {p.tx0, p.ty0, p.tx1, p.ty1};
         if (s.color)
           for (int c = 0; c < 3; ++c) d.rgb[3 * j + c] = p.rgb[c];
@@ -454,6 +459,8 @@ RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, cons
   if (visitor) visitor->begin(workers);
   // A value-only pass over a compacted frame may take uniform tiles from its stored blends.
   const bool shade = s.color || s.depth;
+  if (shade && d.depth.size() != splats.size())
+    throw Error("render: this prepared frame was compacted for value and vote passes: it renders no colour or depth");
   const bool stored_values = want_value && !visitor && !s.color && !s.depth && !d.value_all.empty();
   std::vector<uint64_t> evaluated(workers, 0), contributed(workers, 0);
   std::vector<TileBuffers> buffers(workers);
@@ -478,10 +485,10 @@ RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, cons
     auto with_shade = [&](auto visit, auto sum, const uint8_t* lanes, EntrySum* entries) {
       constexpr bool kV = decltype(visit)::value, kS = decltype(sum)::value;
       if (shade)
-        raster_tile<kV, kS, true>(tx, ty, splats.data(), rgb, list, count, W, H, s, vals, visitor, w, b, evaluated[w],
+        raster_tile<kV, kS, true>(tx, ty, splats.data(), rgb, d.depth.data(), list, count, W, H, s, vals, visitor, w, b, evaluated[w],
                                   contributed[w], lanes, entries);
       else
-        raster_tile<kV, kS, false>(tx, ty, splats.data(), rgb, list, count, W, H, s, vals, visitor, w, b,
+        raster_tile<kV, kS, false>(tx, ty, splats.data(), rgb, nullptr, list, count, W, H, s, vals, visitor, w, b,
                                    evaluated[w], contributed[w], lanes, entries);
     };
     if (stored_values && !sums_here) {

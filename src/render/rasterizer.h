@@ -89,8 +89,8 @@ class PreparedFrame {
 PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, const RenderSettings& settings = {});
 // Blends a prepared frame. `tile_mask` (optional, grid_x * grid_y flags) limits the work
 // to the flagged tiles; other tiles come out empty (background, alpha 0). A frame prepared
-// with settings.color off, or compacted without its colours (render/visibility.h),
-// renders black. Per-Gaussian values must be finite.
+// with settings.color off renders black; one compacted for value and vote passes only
+// (render/visibility.h) refuses colour and depth. Per-Gaussian values must be finite.
 RenderOutput rasterize(const PreparedFrame& frame, const RenderSettings& settings = {},
                        const std::vector<float>* values = nullptr, ContributionVisitor* visitor = nullptr,
                        const std::vector<uint8_t>* tile_mask = nullptr);

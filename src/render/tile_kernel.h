@@ -11,13 +11,12 @@
 
 namespace isegman {
 
-// A projected Gaussian, as the tile loop reads it. 40 bytes: a prepared frame of a large
-// scene holds millions, so colours live apart (frames kept for voting drop them).
+// A projected Gaussian, as the tile loop reads it. 36 bytes: a prepared frame of a large
+// scene holds millions, so colours and depths live apart (frames kept for voting drop them).
 struct Splat {
   float mx, my;          // centre, index coordinates
   float ca, cb, cc;      // conic
   float opacity;         // activated
-  float depth;
   uint32_t index;        // Gaussian index in the scene
   uint16_t px0, py0, px1, py1;  // pixel box outside which alpha < 1/255 (inclusive, clipped)
 };
@@ -25,6 +24,7 @@ struct Splat {
 struct PreparedFrame::Data {
   std::vector<Splat> splats;          // visible Gaussians in depth order
   std::vector<float> rgb;             // 3 per splat; empty: the frame renders black
+  std::vector<float> depth;           // per splat; empty after compact_frame without shading
   std::vector<uint32_t> tile_start;   // tiles + 1 offsets into tile_list
   std::vector<uint32_t> tile_list;    // per tile: indices into splats, front to back
   // Set by compact_frame: per tile_list entry, its fixed-point weights summed over the

@@ -9,11 +9,14 @@
 
 namespace isegman {
 
-RenderOutput compact_frame(PreparedFrame& frame, const RenderSettings& s, bool keep_colors) {
+RenderOutput compact_frame(PreparedFrame& frame, const RenderSettings& s, bool keep_shading) {
   PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
   if (d.compact) {
     RenderOutput out = rasterize(frame, s);
-    if (!keep_colors) std::vector<float>().swap(d.rgb);
+    if (!keep_shading) {
+      std::vector<float>().swap(d.rgb);
+      std::vector<float>().swap(d.depth);
+    }
     return out;
   }
   const size_t entries = d.tile_list.size();
@@ -50,12 +53,13 @@ RenderOutput compact_frame(PreparedFrame& frame, const RenderSettings& s, bool k
   for (size_t i = 0; i < used.size(); ++i)
     if (used[i]) remap[i] = uint32_t(live++);
   std::vector<Splat> splats(live);
-  std::vector<float> rgb(keep_colors && !d.rgb.empty() ? 3 * live : 0);
+  std::vector<float> rgb(keep_shading && !d.rgb.empty() ? 3 * live : 0), depth(keep_shading ? live : 0);
   for (size_t i = 0; i < used.size(); ++i)
     if (used[i]) {
       splats[remap[i]] = d.splats[i];
       if (!rgb.empty())
         for (int c = 0; c < 3; ++c) rgb[3 * size_t(remap[i]) + c] = d.rgb[3 * i + c];
+      if (keep_shading) depth[remap[i]] = d.depth[i];
     }
   std::vector<uint32_t> list(kept), weight(kept);
   for (size_t e = 0, k = 0; e < entries; ++e)
@@ -65,6 +69,7 @@ RenderOutput compact_frame(PreparedFrame& frame, const RenderSettings& s, bool k
     }
   d.splats = std::move(splats);
   d.rgb = std::move(rgb);
+  d.depth = std::move(depth);
   d.tile_start = std::move(start);
   d.tile_list = std::move(list);
   d.entry_weight = std::move(weight);
@@ -79,7 +84,7 @@ bool is_compact(const PreparedFrame& frame) { return PreparedFrameAccess::data(f
 size_t frame_bytes(const PreparedFrame& frame) {
   const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
   return sizeof(PreparedFrame) + sizeof(PreparedFrame::Data) + d.splats.capacity() * sizeof(Splat) +
-         (d.rgb.capacity() + d.tile_start.capacity() + d.tile_list.capacity() + d.entry_weight.capacity() +
+         (d.rgb.capacity() + d.depth.capacity() + d.tile_start.capacity() + d.tile_list.capacity() + d.entry_weight.capacity() +
           d.alpha_all.capacity() + d.value_all.capacity()) *
              4;
 }

@@ -29,9 +29,10 @@ struct GaussianWeights {
 };
 
 // Compacts `frame` (see above) with one full pass, which also renders it: returns what
-// rasterize(frame, settings) would. The frame then renders only with settings.alpha_max;
-// its colours are kept only when `keep_colors` (frames kept for voting need none).
-RenderOutput compact_frame(PreparedFrame& frame, const RenderSettings& settings, bool keep_colors = false);
+// rasterize(frame, settings) would. The frame then renders only with settings.alpha_max,
+// and colour or depth only when `keep_shading` (frames kept for voting need neither:
+// rasterize throws for them).
+RenderOutput compact_frame(PreparedFrame& frame, const RenderSettings& settings, bool keep_shading = false);
 bool is_compact(const PreparedFrame& frame);
 // Bytes the frame holds.
 size_t frame_bytes(const PreparedFrame& frame);

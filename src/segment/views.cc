@@ -1,6 +1,9 @@
 #include "segment/views.h"
 
 #include <algorithm>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -96,6 +99,12 @@ std::vector<SegmentView> build_views(const SceneBundle& b, const std::vector<int
     auto t0 = std::chrono::steady_clock::now();
     models::SamTimings t;
     views.push_back(build_view(b.gaussians, cam, indices[k], sam, opt, &t));
+#ifdef __GLIBC__
+    // The build's transient buffers (projection, sorting, compaction, SAM activations)
+    // are freed, but glibc keeps much of such memory in its heaps; give it back, or it
+    // adds up over the views.
+    malloc_trim(0);
+#endif
     if (ms_embedding) *ms_embedding += t.preprocess_ms + t.encoder_ms;
     if (progress) {
       char line[256];
