@@ -18,7 +18,13 @@ using nlohmann::json;
 ClickRecord click_from_json(const json& body);
 // {tau, views, mode, inspection}, every field optional.
 SettingsRequest settings_from_json(const json& body);
-// /api/select/<tool>: box {lo, hi}, sphere {center, radius}, invert, clear, all; mode.
+// /api/select/<tool> (edit/select_op.h's names), every one with `mode`
+// (replace/add/subtract/intersect) where it combines:
+//   box {lo, hi}, sphere {center, radius};
+//   rect / lasso / brush {view | camera, points: [[x, y], ...], radius (brush, pixels),
+//     visible, min_weight}: pixels of the camera's full-size image, as clicks;
+//   color {view | camera, x, y | color, tolerance} (the eyedropper);
+//   opacity / size {min, max}; grow / shrink {k | radius, steps}; invert, clear, all.
 // Unknown tools are AppError(kNotFound).
 SelectRequest select_from_json(const std::string& tool, const json& body);
 // /api/edit/<name> (edit_op.h's names; `move` = transform): colorize {color, mode},

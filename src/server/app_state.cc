@@ -124,7 +124,17 @@ std::vector<uint8_t> AppState::render(const RenderRequest& r) const {
 }
 
 EditResult AppState::select(const SelectRequest& request) {
-  EditResult r = scene_.select(request);
+  edit::SelectOp op = request.op;
+  if (request.free) {
+    op.camera = make_free_camera(*request.free);
+  } else if (request.camera_index >= 0) {
+    if (request.camera_index >= int(bundle_.cameras.size()))
+      invalid("view: no camera " + std::to_string(request.camera_index) + " (there are " +
+              std::to_string(bundle_.cameras.size()) + ")");
+    op.camera = bundle_.cameras[size_t(request.camera_index)];
+  }
+  op.screen.render.threads = options_.threads;
+  EditResult r = scene_.select(op);
   log_.note(r.label);
   return r;
 }

@@ -1,0 +1,150 @@
+// API tests of the selection tools: screen-space shapes (rect, lasso, brush; visible
+// surface only), the eyedropper, attribute ranges, grow/shrink, combine modes, and each
+// as one step of the one history.
+#include <gtest/gtest.h>
+
+#include "edit/screen_selection.h"
+#include "edit/selection_tools.h"
+#include "server/test_server.h"
+
+namespace isegman::server {
+namespace {
+
+size_t selected(Running& s) { return s.get_json("/api/status")["edit"]["selected"].get<size_t>(); }
+
+size_t library_count(const GaussianScene& g, const Camera& cam, const edit::ScreenShape& shape, bool visible = false) {
+  edit::ScreenSelectOptions o;
+  o.visible_only = visible;
+  return edit::select_in_shape(g, cam, shape, o).count();
+}
+
+TEST(SelectionApi, RectLassoBrushInATrainingView) {
+  DemoScene d = small_demo();
+  Running s(d.bundle, no_segmentation(temp_dir("sel-shapes")));
+  const Camera& cam = d.bundle.cameras[0];
+  const double w = cam.width, h = cam.height;
+  const edit::ScreenShape rect{edit::ShapeKind::kRect, {{0.25 * w, 0.25 * h}, {0.75 * w, 0.75 * h}}, 0};
+  const size_t want = library_count(d.bundle.gaussians, cam, rect);
+  ASSERT_GT(want, 10u);
+  const json rect_body = {{"view", 0}, {"points", {{0.25 * w, 0.25 * h}, {0.75 * w, 0.75 * h}}}};
+  json r = s.post_json("/api/select/rect", rect_body.dump());
+  EXPECT_EQ(r["selected"].get<size_t>(), want);
+  EXPECT_EQ(r["kind"], "select");
+  EXPECT_NE(r["label"].get<std::string>().find("rect selection (replace)"), std::string::npos);
+
+  // Visible surface only: a subset (the ground and objects hide what lies behind them).
+  json vis_body = rect_body;
+  vis_body["visible"] = true;
+  const size_t vis = s.post_json("/api/select/rect", vis_body.dump())["selected"].get<size_t>();
+  EXPECT_EQ(vis, library_count(d.bundle.gaussians, cam, rect, true));
+  EXPECT_LT(vis, want);
+  EXPECT_GT(vis, 0u);
+
+  // A lasso (triangle) added to the rectangle, then a brush stroke subtracted.
+  s.post_json("/api/select/rect", rect_body.dump());
+  const json lasso = {{"view", 0}, {"mode", "add"}, {"points", {{0.0, 0.0}, {0.3 * w, 0.0}, {0.0, 0.3 * h}}}};
+  const size_t with_lasso = s.post_json("/api/select/lasso", lasso.dump())["selected"].get<size_t>();
+  const edit::ScreenShape tri{edit::ShapeKind::kLasso, {{0, 0}, {0.3 * w, 0}, {0, 0.3 * h}}, 0};
+  EXPECT_EQ(with_lasso, edit::unite(edit::select_in_shape(d.bundle.gaussians, cam, rect),
+                                    edit::select_in_shape(d.bundle.gaussians, cam, tri)).count());
+  const json brush = {{"view", 0}, {"mode", "subtract"}, {"radius", 0.08 * w},
+                      {"points", {{0.3 * w, 0.5 * h}, {0.5 * w, 0.5 * h}, {0.7 * w, 0.5 * h}}}};
+  const size_t after_brush = s.post_json("/api/select/brush", brush.dump())["selected"].get<size_t>();
+  EXPECT_LT(after_brush, with_lasso);
+  EXPECT_GT(after_brush, 0u);
+
+  // Each tool is one step of the one history: undo the brush, redo it.
+  EXPECT_EQ(s.post_json("/api/undo", "")["selected"].get<size_t>(), with_lasso);
+  EXPECT_EQ(s.post_json("/api/redo", "")["selected"].get<size_t>(), after_brush);
+  const json st = s.get_json("/api/status");
+  EXPECT_EQ(st["history"]["entries"].size(), 5u);
+  EXPECT_EQ(st["history"]["entries"][4]["kind"], "select");
+}
+
+TEST(SelectionApi, FreeCameraRectAndIntersect) {
+  DemoScene d = small_demo();
+  Running s(d.bundle, no_segmentation(temp_dir("sel-free")));
+  const json cam = {{"eye", {0, -6, 3}}, {"target", {0, 0, 0}}, {"up", {0, 0, 1}}, {"fov", 60}, {"width", 320},
+                    {"height", 240}};
+  const json left = {{"camera", cam}, {"points", {{0, 0}, {160, 240}}}};
+  const size_t l = s.post_json("/api/select/rect", left.dump())["selected"].get<size_t>();
+  const json top = {{"camera", cam}, {"points", {{0, 0}, {320, 120}}}, {"mode", "intersect"}};
+  const size_t both = s.post_json("/api/select/rect", top.dump())["selected"].get<size_t>();
+  FreeCameraSpec spec;
+  spec.eye = {0, -6, 3};
+  spec.target = {0, 0, 0};
+  spec.up = {0, 0, 1};
+  spec.width = 320;
+  spec.height = 240;
+  const Camera c = make_free_camera(spec);
+  const Selection a = edit::select_in_shape(d.bundle.gaussians, c, edit::ScreenShape{edit::ShapeKind::kRect, {{0, 0}, {160, 240}}, 0});
+  const Selection b = edit::select_in_shape(d.bundle.gaussians, c, edit::ScreenShape{edit::ShapeKind::kRect, {{0, 0}, {320, 120}}, 0});
+  EXPECT_EQ(l, a.count());
+  EXPECT_EQ(both, edit::intersect(a, b).count());
+  EXPECT_GT(both, 0u);
+  EXPECT_LT(both, l);
+}
+
+TEST(SelectionApi, EyedropperRangesGrowShrink) {
+  DemoScene d = small_demo();
+  const size_t n = d.bundle.gaussians.size();
+  Running s(d.bundle, no_segmentation(temp_dir("sel-misc")));
+  // The eyedropper at the centre of an object in view 0 picks a similar-colour set.
+  const DemoObject& obj = d.objects[0];
+  const Camera& cam = d.bundle.cameras[0];
+  double u = 0, v = 0;
+  ASSERT_TRUE(cam.project(obj.center, u, v));
+  const json pick = {{"view", 0}, {"x", u}, {"y", v}, {"tolerance", 0.15}};
+  json r = s.post_json("/api/select/color", pick.dump());
+  const size_t similar = r["selected"].get<size_t>();
+  EXPECT_GT(similar, 0u);
+  EXPECT_LT(similar, n);
+  EXPECT_NE(r["label"].get<std::string>().find("colour selection (#"), std::string::npos);
+  const int64_t g = edit::gaussian_at(d.bundle.gaussians, cam, u, v);
+  ASSERT_GE(g, 0);
+  EXPECT_EQ(similar,
+            edit::select_similar_color(d.bundle.gaussians, edit::base_color(d.bundle.gaussians, size_t(g)), 0.15).count());
+  EXPECT_EQ(s.post_json("/api/select/color", R"({"color": "#808080", "tolerance": 0})")["selected"].get<size_t>(),
+            edit::select_similar_color(d.bundle.gaussians, {128 / 255.0, 128 / 255.0, 128 / 255.0}, 0).count());
+
+  // Attribute ranges.
+  const size_t opaque = s.post_json("/api/select/opacity", R"({"min": 0.5, "max": 1})")["selected"].get<size_t>();
+  EXPECT_EQ(opaque, edit::select_opacity(d.bundle.gaussians, 0.5, 1).count());
+  const size_t big = s.post_json("/api/select/size", R"({"min": 0.05})")["selected"].get<size_t>();
+  EXPECT_EQ(big, edit::select_size(d.bundle.gaussians, 0.05, 1e7).count());
+
+  // Grow then shrink by neighbours and by a radius.
+  const Vec3 rr{obj.radius, obj.radius, obj.radius * 0.3};  // a slab of the (hollow) object
+  const Vec3 lo = obj.center - rr, hi = obj.center + rr;
+  const json box = {{"lo", {lo.x, lo.y, lo.z}}, {"hi", {hi.x, hi.y, hi.z}}};
+  const size_t seed = s.post_json("/api/select/box", box.dump())["selected"].get<size_t>();
+  ASSERT_GT(seed, 0u);
+  const Selection seed_sel = edit::select_box(d.bundle.gaussians, lo, hi);
+  const size_t grown = s.post_json("/api/select/grow", R"({"k": 6, "steps": 2})")["selected"].get<size_t>();
+  EXPECT_EQ(grown, edit::grow(d.bundle.gaussians, seed_sel, 6, 0, 2).count());
+  EXPECT_GT(grown, seed);
+  const size_t shrunk = s.post_json("/api/select/shrink", R"({"k": 6, "steps": 2})")["selected"].get<size_t>();
+  EXPECT_EQ(shrunk, edit::shrink(d.bundle.gaussians, edit::grow(d.bundle.gaussians, seed_sel, 6, 0, 2), 6, 0, 2).count());
+  EXPECT_LT(shrunk, grown);
+  const double radius = obj.radius * 0.2;
+  const json by_radius = {{"radius", radius}};
+  const size_t rg = s.post_json("/api/select/grow", by_radius.dump())["selected"].get<size_t>();
+  EXPECT_GE(rg, shrunk);
+
+  // Bad requests name the field.
+  s.post_json("/api/select/rect", R"({"view": 0, "points": [[0, 0]]})", 400);
+  s.post_json("/api/select/rect", R"({"view": 99, "points": [[0, 0], [5, 5]]})", 400);
+  s.post_json("/api/select/rect", R"({"points": [[0, 0], [5, 5]]})", 400);
+  s.post_json("/api/select/rect", R"({"view": 0, "points": [[0, 0], [5, "x"]]})", 400);
+  s.post_json("/api/select/rect", R"({"view": 0, "points": [[0, 0], [5, 5]], "colour": 1})", 400);
+  s.post_json("/api/select/brush", R"({"view": 0, "points": [[0, 0]]})", 400);  // no radius
+  s.post_json("/api/select/lasso", R"({"view": 0, "points": [[0, 0], [1, 1]]})", 400);
+  s.post_json("/api/select/color", R"({"view": 0, "x": 1e4, "y": 5})", 400);
+  s.post_json("/api/select/opacity", R"({"min": 0.8, "max": 0.2})", 400);
+  s.post_json("/api/select/grow", R"({"k": 0})", 400);
+  s.post_json("/api/select/shrink", R"({"steps": 0})", 400);
+  s.post_json("/api/select/rect", R"({"view": 0, "points": [[0, 0], [5, 5]], "mode": "xor"})", 400);
+}
+
+}  // namespace
+}  // namespace isegman::server
