@@ -197,8 +197,10 @@ edit::EditOp edit_from_json(const std::string& name, const json& body) {
     case edit::EditKind::kCombine:
       op.transform = similarity_from(body);
       op.direction = edit::CombineDirection::kFrom;
-      op.other_path = json_string(body, "path", 4096);
-      if (op.other_path.empty()) bad_request("path: empty");
+      if (body.contains("path") == body.contains("upload"))
+        bad_request("give either 'path' (inside the data folder) or 'upload' (an uploaded scene's name)");
+      op.other_path = json_string(body, body.contains("upload") ? "upload" : "path", 4096);
+      if (op.other_path.empty()) bad_request(std::string(body.contains("upload") ? "upload" : "path") + ": empty");
       break;
     default:
       break;
@@ -320,6 +322,22 @@ json to_json(const Timeline& t) {
 json to_json(const SelectionBounds& b) {
   return {{"of", b.of_selection ? "selection" : "scene"}, {"count", b.count},          {"lo", vec_json(b.lo)},
           {"hi", vec_json(b.hi)},                         {"center", vec_json(b.center)}, {"radius", b.radius}};
+}
+
+SceneSource scene_source_from_json(const json& body) {
+  return body.is_object() && body.contains("upload") ? SceneSource::kUpload : SceneSource::kDataFolder;
+}
+
+json to_json(const SceneFileEntry& e) {
+  json j = {{"name", e.name}, {"kind", e.kind}, {"bytes", e.bytes}};
+  if (e.gaussians) j["gaussians"] = e.gaussians;
+  return j;
+}
+
+json to_json(const std::vector<SceneFileEntry>& entries) {
+  json a = json::array();
+  for (const SceneFileEntry& e : entries) a.push_back(to_json(e));
+  return a;
 }
 
 json to_json(const ExportResult& r) { return {{"path", r.path}, {"gaussians", r.gaussians}, {"notes", r.notes}}; }

@@ -28,9 +28,11 @@ SettingsRequest settings_from_json(const json& body);
 // Unknown tools are AppError(kNotFound).
 SelectRequest select_from_json(const std::string& tool, const json& body);
 // /api/edit/<name> (edit_op.h's names; `move` = transform): colorize {color, mode},
-// scale {factor}, copy / transform {translate, rotate, scale}, combine {path, ...}.
+// scale {factor}, copy / transform {translate, rotate, scale}, combine {path | upload, ...}.
 // Unknown names are AppError(kNotFound).
 edit::EditOp edit_from_json(const std::string& name, const json& body);
+// combine's {upload: name} (an uploaded scene) or {path} (inside the data folder).
+SceneSource scene_source_from_json(const json& body);
 // {"eye":[..], "target":[..], "up":[..], "fov": deg, "width": w, "height": h}.
 FreeCameraSpec free_camera_from_json(const json& j);
 
@@ -41,5 +43,7 @@ json to_json(const EditResult& result);
 json to_json(const Timeline& history);
 json to_json(const SelectionBounds& bounds);
 json to_json(const ExportResult& result);
+json to_json(const SceneFileEntry& entry);
+json to_json(const std::vector<SceneFileEntry>& entries);
 
 }  // namespace isegman::server

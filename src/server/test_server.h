@@ -37,9 +37,9 @@ struct Running {
   std::unique_ptr<httplib::Client> client;
   int port = 0;
 
-  Running(const SceneBundle& bundle, AppOptions options) {
+  Running(const SceneBundle& bundle, AppOptions options, const HttpLimits& limits = {}) {
     app = std::make_unique<AppState>(bundle, options);
-    http = std::make_unique<HttpServer>(*app);
+    http = std::make_unique<HttpServer>(*app, limits);
     port = http->start("127.0.0.1", 0);
     client = std::make_unique<httplib::Client>("127.0.0.1", port);
     client->set_connection_timeout(5);
