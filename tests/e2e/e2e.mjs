@@ -9,6 +9,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { selectionToolSteps } from './tools_steps.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const SKIP = 77;
@@ -197,7 +198,8 @@ try {
   await page.waitForSelector('body[data-busy="false"]', { timeout: 30000 });
 
   // Export: download and on the server.
-  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#btn-download-ply')]);
+  await page.selectOption('#export-format', 'ply');
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#btn-download')]);
   const downloaded = path.join(work, 'downloaded.ply');
   await download.saveAs(downloaded);
   const nDownloaded = plyVertexCount(downloaded);
@@ -214,6 +216,8 @@ try {
   log('render difference', diff);
   check(diff.inside > 0.08, `the object's pixels changed (mean difference ${diff.inside.toFixed(3)})`);
   check(diff.outside < diff.inside / 3, `pixels away from the object changed less (${diff.outside.toFixed(3)})`);
+
+  await selectionToolSteps({ page, fx, work, shots, check, log });
 
   await page.click('#btn-orbit');
   await page.waitForSelector('#view-img[data-key^="f"]');
