@@ -91,8 +91,14 @@ void Segmentation::prepare(std::shared_ptr<const SceneBundle> snapshot, uint64_t
   prepared_.reset();
   Prepared p;
   p.chosen = segment::sample_views(snapshot->cameras, settings_.views_spec);
-  p.views = build_views(*snapshot, p.chosen, session_.get(), snapshot_ ? &snapshot_->gaussians : nullptr, progress,
-                        int(p.chosen.size()));
+  std::vector<int> all = p.chosen;
+  if (session_)
+    for (const segment::SegmentView& v : session_->views())
+      if (v.camera_index >= 0 && std::find(all.begin(), all.end(), v.camera_index) == all.end())
+        all.push_back(v.camera_index);
+  std::vector<segment::SegmentView> views =
+      build_views(*snapshot, all, session_.get(), snapshot_ ? &snapshot_->gaussians : nullptr, progress, int(all.size()));
+  for (size_t k = 0; k < views.size(); ++k) (k < p.chosen.size() ? p.views : p.extra).push_back(std::move(views[k]));
   p.snapshot = std::move(snapshot);
   p.fingerprint = fingerprint;
   prepared_ = std::move(p);
@@ -149,6 +155,8 @@ void Segmentation::rebuild(const Progress& progress, const segment::Session* don
   if (prepared_for(fingerprint_) && prepared_->chosen == chosen) {
     snapshot_ = prepared_->snapshot;  // the views index its Gaussians
     views = std::move(prepared_->views);
+    spare_ = std::move(prepared_->extra);
+    spare_fingerprint_ = fingerprint_;
     if (progress) progress(int(chosen.size()), total, "views prepared after the edit");
   } else {
     views = build_views(*snapshot_, chosen, donor, donor_scene, progress, total);
@@ -172,6 +180,14 @@ int Segmentation::view_for(const ClickRecord& c, const Progress& progress) {
     for (size_t k = 0; k < views.size(); ++k)
       if (views[k].camera_index == c.camera_index) return int(k);
     if (c.camera_index >= int(snapshot_->cameras.size())) throw AppError(ErrorKind::kInvalid, "view: no camera " + std::to_string(c.camera_index));
+    if (spare_fingerprint_ == fingerprint_)
+      for (size_t k = 0; k < spare_.size(); ++k)
+        if (spare_[k].camera_index == c.camera_index) {
+          const int added = session_->add_view(std::move(spare_[k]));
+          spare_.erase(spare_.begin() + long(k));
+          free_views_.resize(session_->views().size());
+          return added;
+        }
     if (progress) progress(0, 1, "adding view " + snapshot_->cameras[size_t(c.camera_index)].name);
     const int k = session_->add_view(segment::build_view(snapshot_->gaussians, snapshot_->cameras[size_t(c.camera_index)],
                                                          c.camera_index, *sam_, view_options_));

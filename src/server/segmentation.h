@@ -67,7 +67,8 @@ class Segmentation {
   void open(std::shared_ptr<const SceneBundle> snapshot, uint64_t fingerprint, const Progress& progress);
   // Builds ahead the views of an edited scene (`snapshot`, not yet current), reusing
   // the current session's views the edit does not reach; the next open() of that
-  // scene takes them. Reports per view whether it was reused or rebuilt.
+  // scene takes them. Cameras clicked in that are not sampled views are prepared too
+  // (the next click is likely there). Reports per view whether it was reused or rebuilt.
   void prepare(std::shared_ptr<const SceneBundle> snapshot, uint64_t fingerprint, const Progress& progress);
   bool prepared_for(uint64_t fingerprint) const { return prepared_ && prepared_->fingerprint == fingerprint; }
   // Of the last views built: how many were reused from the previous scene / rebuilt.
@@ -126,9 +127,13 @@ class Segmentation {
     std::shared_ptr<const SceneBundle> snapshot;
     uint64_t fingerprint = 0;
     std::vector<int> chosen;
-    std::vector<segment::SegmentView> views;
+    std::vector<segment::SegmentView> views;  // of `chosen`
+    std::vector<segment::SegmentView> extra;  // of the other cameras clicked in before
   };
   std::optional<Prepared> prepared_;
+  // Prepared views of cameras outside the sampled ones, for a click there (scene `spare_fingerprint_`).
+  std::vector<segment::SegmentView> spare_;
+  uint64_t spare_fingerprint_ = 0;
   int last_reused_ = 0, last_rebuilt_ = 0;
   std::shared_ptr<const models::SamModel> sam_;
   segment::SessionOptions base_session_;

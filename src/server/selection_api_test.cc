@@ -15,8 +15,6 @@
 namespace isegman::server {
 namespace {
 
-size_t selected(Running& s) { return s.get_json("/api/status")["edit"]["selected"].get<size_t>(); }
-
 size_t library_count(const GaussianScene& g, const Camera& cam, const edit::ScreenShape& shape, bool visible = false) {
   edit::ScreenSelectOptions o;
   o.visible_only = visible;

@@ -67,7 +67,9 @@ TEST(ViewReuse, UnreachedViewsRenderTheSame) {
     const bool changed = diff_reaches_view(g, after, diff, cam, rs);
     const RenderOutput a = render(g, cam, rs), b = render(after, cam, rs);
     const bool identical = same_image(a.color, b.color) && same_image(a.depth, b.depth) && same_image(a.alpha, b.alpha);
-    if (!changed) EXPECT_TRUE(identical) << cam.name;
+    if (!changed) {
+      EXPECT_TRUE(identical) << cam.name;
+    }
     (changed ? reached : unreached)++;
   }
   EXPECT_GT(reached, 0);
