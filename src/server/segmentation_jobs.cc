@@ -264,7 +264,17 @@ void SegmentationJobs::scene_changed() {
       for (uint64_t k : seg_->kept())
         if (k == now) return;  // restored instead, on the next click
       const auto t0 = std::chrono::steady_clock::now();
-      seg_->prepare(snapshot(), now, report);
+      // Left for another scene (undo, another edit) meanwhile: stop after this view.
+      struct Left {};
+      try {
+        seg_->prepare(snapshot(), now, [&](int done, int total, const std::string& line) {
+          report(done, total, line);
+          if (scene_.fingerprint() != now) throw Left{};
+        });
+      } catch (const Left&) {
+        log_.note("stopped preparing the views of an edited scene: the scene changed again");
+        return;
+      }
       char line[200];
       std::snprintf(line, sizeof line, "views of the edited scene: %d kept (the edit does not reach them), %d re-rendered (%.1f s)",
                     seg_->last_reused(), seg_->last_rebuilt(),
