@@ -250,8 +250,11 @@ export class SelectionTools {
 
   bindKeys() {
     document.addEventListener('keydown', (e) => {
+      // Typing fields keep their keys; sliders and check boxes (the tools' own options) do not.
       const tag = (e.target.tagName || '').toLowerCase();
-      if (tag === 'input' || tag === 'select' || tag === 'textarea' || e.ctrlKey || e.metaKey || e.altKey) return;
+      const typing = tag === 'select' || tag === 'textarea' ||
+        (tag === 'input' && !['checkbox', 'range', 'radio', 'color'].includes(e.target.type));
+      if (typing || e.ctrlKey || e.metaKey || e.altKey) return;
       const k = e.key;
       const tool = TOOLS.find((t) => t.key === k.toLowerCase() && !e.shiftKey);
       let handled = true;
