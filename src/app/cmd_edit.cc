@@ -20,6 +20,8 @@
 #include "edit/edit_op.h"
 #include "edit/history.h"
 #include "edit/scene_format.h"
+#include "edit/screen_selection.h"
+#include "edit/select_op.h"
 #include "edit/selection_tools.h"
 #include "edit/transform.h"
 #include "io/atomic_file.h"
@@ -49,9 +51,22 @@ Selection (before the first operation, or after `select`):
   --outside                 the boxes/spheres select what lies outside them
   --opacity-min A / --opacity-max A   keep Gaussians with sigmoid(opacity) in range
   --size-min S / --size-max S         keep Gaussians whose largest scale is in range
-  --grow K [--grow-radius R] [--grow-steps N]   add K nearest neighbours (within R)
+  --rect CAM:x0,y0,x1,y1    centres that project into a rectangle of camera CAM's image
+  --lasso CAM:x,y,x,y,...   ... into a polygon (>= 3 points)
+  --brush CAM:R:x,y,...     ... into a brush stroke of radius R pixels
+                            (pixels of CAM's full-size image; CAM: id or name of a
+                            camera of the scene folder; repeatable: union)
+  --visible                 the screen shapes take only Gaussians on the visible surface
+  --opacity-min A / --opacity-max A   keep Gaussians with sigmoid(opacity) in range
+  --size-min S / --size-max S         keep Gaussians whose largest scale is in range
+  --similar-color C [--color-tolerance T]   keep Gaussians whose base colour is within T
+                            (RGB distance, default 0.1) of C
+  --grow K [--grow-radius R] [--grow-steps N]   add K nearest neighbours (within R);
+                            K = 0: every neighbour within R
+  --shrink K [--shrink-radius R] [--shrink-steps N]   drop Gaussians with an unselected
+                            neighbour (same rule)
   --invert                  invert the final selection
-  (order: file | shapes, then thresholds, then grow, then invert)
+  (order: file | shapes, then thresholds, then grow, shrink, then invert)
 
 Operations (each acts on the current selection S):
   remove                    delete S
@@ -72,8 +87,10 @@ const std::set<std::string> kOps = {"remove", "extract", "colorize", "scale", "c
                                     "combine", "select", "undo", "redo"};
 const std::set<std::string> kGlobalValue = {"out", "save-selection", "history-mb"};
 const std::set<std::string> kSelectValue = {"selection", "box", "sphere", "opacity-min", "opacity-max",
-                                            "size-min", "size-max", "grow", "grow-radius", "grow-steps"};
-const std::set<std::string> kSelectSwitch = {"outside", "invert"};
+                                            "size-min", "size-max", "grow", "grow-radius", "grow-steps",
+                                            "shrink", "shrink-radius", "shrink-steps", "rect", "lasso", "brush",
+                                            "similar-color", "color-tolerance"};
+const std::set<std::string> kSelectSwitch = {"outside", "invert", "visible"};
 const std::set<std::string> kTransformValue = {"translate", "rotate-deg", "scale", "pivot"};
 
 struct Segment {
@@ -119,6 +136,7 @@ std::string fmt(const Vec3& v) {
 struct Loaded {
   GaussianScene scene;
   std::string file;  // the file the Gaussians came from
+  std::vector<Camera> cameras;  // a scene folder's cameras (for the screen shapes)
 };
 
 Loaded load_any(const std::string& path) {
@@ -130,6 +148,7 @@ Loaded load_any(const std::string& path) {
     SceneBundle b = load_scene(path, opt);
     l.scene = std::move(b.gaussians);
     l.file = b.ply_path;
+    l.cameras = std::move(b.cameras);
   } else {
     SceneFormat f;
     std::vector<std::string> notes;
@@ -169,8 +188,39 @@ Similarity similarity_from(const Args& a) {
   return t;
 }
 
+// --rect CAM:x0,y0,x1,y1 / --lasso CAM:x,y,... / --brush CAM:R:x,y,... as the SelectOp the
+// web API's rect / lasso / brush fill (edit/select_op.h).
+SelectOp screen_op(const std::string& flag, const std::string& value, bool visible, const std::vector<Camera>& cameras) {
+  const std::string what = "--" + flag;
+  const size_t colon = value.find(':');
+  if (colon == std::string::npos) throw Error(what + " '" + value + "': expected CAM:x,y,... (CAM: a camera id or name)");
+  const std::string cam = value.substr(0, colon);
+  std::string rest = value.substr(colon + 1);
+  if (cameras.empty()) throw Error(what + ": the scene has no cameras (give a scene folder with cameras.json)");
+  const Camera* c = find_camera(cameras, cam);
+  if (!c) throw Error(what + ": no camera with id or name '" + cam + "'");
+  SelectOp op;
+  op.kind = SelectKind::kShape;
+  op.camera = *c;
+  op.shape.kind = parse_shape_kind(flag);
+  op.screen.visible_only = visible;
+  if (op.shape.kind == ShapeKind::kBrush) {
+    const size_t c2 = rest.find(':');
+    if (c2 == std::string::npos) throw Error(what + " '" + value + "': expected CAM:R:x,y,... (R: radius in pixels)");
+    op.shape.radius = parse_numbers(rest.substr(0, c2), 1, what + " radius")[0];
+    rest = rest.substr(c2 + 1);
+  }
+  const size_t commas = size_t(std::count(rest.begin(), rest.end(), ','));
+  if (commas % 2 == 0) throw Error(what + ": expected an even count of coordinates x,y,x,y,...");
+  const std::vector<double> v = parse_numbers(rest, int(commas + 1), what);
+  for (size_t k = 0; k + 1 < v.size(); k += 2) op.shape.points.push_back({v[k], v[k + 1]});
+  check_shape(op.shape);
+  return op;
+}
+
 // Builds a selection from selection flags; `given` says whether any flag was present.
-Selection selection_from(const Args& a, const GaussianScene& scene, std::vector<std::string>& inputs, bool& given) {
+Selection selection_from(const Args& a, const GaussianScene& scene, const std::vector<Camera>& cameras,
+                         std::vector<std::string>& inputs, bool& given) {
   given = false;
   Selection shapes = Selection::none_of(scene);
   bool have_base = false;
@@ -198,18 +248,32 @@ Selection selection_from(const Args& a, const GaussianScene& scene, std::vector<
     if (!have_geo) throw Error("--outside needs --box or --sphere");
     geo = invert(geo);
   }
+  bool have_screen = false;
+  for (const char* flag : {"rect", "lasso", "brush"})
+    for (const std::string& v : a.all(flag)) {
+      geo = unite(geo, run_select(scene, Selection::none_of(scene), screen_op(flag, v, a.has("visible"), cameras)).selection);
+      have_geo = have_screen = true;
+    }
+  if (a.has("visible") && !have_screen) throw Error("--visible needs --rect, --lasso or --brush");
   if (have_geo) shapes = unite(shapes, geo);
   have_base |= have_geo;
-  const bool thresholds = a.has("opacity-min") || a.has("opacity-max") || a.has("size-min") || a.has("size-max");
+  const bool thresholds = a.has("opacity-min") || a.has("opacity-max") || a.has("size-min") || a.has("size-max") ||
+                          a.has("similar-color");
   Selection sel = have_base ? shapes : (thresholds ? Selection::all_of(scene) : Selection::none_of(scene));
   if (a.has("opacity-min") || a.has("opacity-max"))
     sel = intersect(sel, select_opacity(scene, a.get_double("opacity-min", 0.0), a.get_double("opacity-max", 1.0)));
   if (a.has("size-min") || a.has("size-max"))
     sel = intersect(sel, select_size(scene, a.get_double("size-min", 0.0), a.get_double("size-max", 1e30)));
+  if (a.has("similar-color")) {
+    const Rgb c = parse_color(a.get("similar-color"));
+    sel = intersect(sel, select_similar_color(scene, {c.r, c.g, c.b}, a.get_double("color-tolerance", 0.1)));
+  }
   if (a.has("grow"))
     sel = grow(scene, sel, a.get_int("grow", 8), a.get_double("grow-radius", 0.0), a.get_int("grow-steps", 1));
+  if (a.has("shrink"))
+    sel = shrink(scene, sel, a.get_int("shrink", 8), a.get_double("shrink-radius", 0.0), a.get_int("shrink-steps", 1));
   if (a.has("invert")) sel = invert(sel);
-  given = have_base || thresholds || a.has("grow") || a.has("invert");
+  given = have_base || thresholds || a.has("grow") || a.has("shrink") || a.has("invert");
   return sel;
 }
 
@@ -309,7 +373,7 @@ int run_edit(const std::vector<std::string>& argv) {
   std::printf("scene %s: %zu Gaussians, SH degree %d\n", in.file.c_str(), in.scene.size(), in.scene.sh_degree);
   EditSession session(std::move(in.scene), limits);
   bool given = false;
-  Selection first = selection_from(head, session.scene(), inputs, given);
+  Selection first = selection_from(head, session.scene(), in.cameras, inputs, given);
   if (given) {
     session.select(first, "initial selection");
     print_selection(session, "selection");
@@ -325,8 +389,8 @@ int run_edit(const std::vector<std::string>& argv) {
     const Vec3 c_before = selection_centroid(session.scene(), session.mask());
     if (op == "select") {
       bool any = false;
-      Selection next = selection_from(a, session.scene(), inputs, any);
-      if (!any) throw Error("select: give --selection, --box, --sphere, a threshold, --grow or --invert");
+      Selection next = selection_from(a, session.scene(), in.cameras, inputs, any);
+      if (!any) throw Error("select: give --selection, --box, --sphere, --rect, --lasso, --brush, a threshold, --grow, --shrink or --invert");
       const CombineMode mode = parse_combine_mode(a.get("combine", "replace"));
       session.select(combine_selections(session.selection(), next, mode),
                      std::string("select (") + combine_mode_name(mode) + ")");

@@ -5,6 +5,7 @@
 #include <queue>
 
 #include "core/error.h"
+#include "core/sh.h"
 #include "edit/checks.h"
 
 namespace isegman::edit {
@@ -206,12 +207,56 @@ std::vector<uint32_t> CentreIndex::nearest(const Vec3& p, int k, double max_dist
   return out;
 }
 
+std::vector<uint32_t> CentreIndex::within(const Vec3& p, double radius) const {
+  std::vector<uint32_t> out;
+  if (nodes_.empty() || !(radius >= 0)) return out;
+  const double r2 = radius * radius;
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const Node& n = nodes_[size_t(stack.back())];
+    stack.pop_back();
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double v = p[a] < n.lo[a] ? n.lo[a] - p[a] : (p[a] > n.hi[a] ? p[a] - n.hi[a] : 0);
+      d2 += v * v;
+    }
+    if (d2 > r2) continue;
+    if (n.left < 0) {
+      for (uint32_t j = n.begin; j < n.end; ++j) {
+        const uint32_t i = order_[j];
+        const double dx = pos_[3 * i] - p.x, dy = pos_[3 * i + 1] - p.y, dz = pos_[3 * i + 2] - p.z;
+        if (dx * dx + dy * dy + dz * dz <= r2) out.push_back(i);
+      }
+    } else {
+      stack.push_back(n.left);
+      stack.push_back(n.right);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+namespace {
+
+// Checks the neighbour rule shared by grow and shrink (see the header).
+void check_neighbour_rule(int k, double max_distance, int steps, const std::string& op) {
+  check_finite(max_distance, "maximum distance", op);
+  if (k < 0 || k > 1000) throw Error(op, "neighbour count must be in 0..1000, got " + std::to_string(k));
+  if (k == 0 && !(max_distance > 0)) throw Error(op, "with no neighbour count, a radius > 0 is required");
+  if (steps < 1 || steps > 1000) throw Error(op, "steps must be in 1..1000, got " + std::to_string(steps));
+}
+
+std::vector<uint32_t> neighbours(const CentreIndex& index, const Vec3& p, int k, double max_distance) {
+  // +1: the query point is its own nearest centre.
+  return k > 0 ? index.nearest(p, k + 1, max_distance) : index.within(p, max_distance);
+}
+
+}  // namespace
+
 Selection grow(const GaussianScene& scene, const Selection& sel, int k, double max_distance, int steps) {
   const std::string op = "grow selection";
   sel.check_matches(scene, op);
-  check_finite(max_distance, "maximum distance", op);
-  if (k < 1 || k > 1000) throw Error(op, "neighbour count must be in 1..1000, got " + std::to_string(k));
-  if (steps < 1 || steps > 1000) throw Error(op, "steps must be in 1..1000, got " + std::to_string(steps));
+  check_neighbour_rule(k, max_distance, steps, op);
   Selection out = sel;
   out.score.clear();
   if (sel.empty()) return out;
@@ -222,7 +267,7 @@ Selection grow(const GaussianScene& scene, const Selection& sel, int k, double m
   for (int s = 0; s < steps && !frontier.empty(); ++s) {
     std::vector<uint32_t> next;
     for (uint32_t i : frontier)
-      for (uint32_t j : index.nearest(scene.position(i), k + 1, max_distance))  // +1: itself
+      for (uint32_t j : neighbours(index, scene.position(i), k, max_distance))
         if (!out.mask[j]) {
           out.mask[j] = true;
           next.push_back(j);
@@ -230,6 +275,54 @@ Selection grow(const GaussianScene& scene, const Selection& sel, int k, double m
     frontier = std::move(next);
   }
   return out;
+}
+
+Selection shrink(const GaussianScene& scene, const Selection& sel, int k, double max_distance, int steps) {
+  const std::string op = "shrink selection";
+  sel.check_matches(scene, op);
+  check_neighbour_rule(k, max_distance, steps, op);
+  Selection out = sel;
+  out.score.clear();
+  if (sel.empty()) return out;
+  const CentreIndex index(scene);
+  for (int s = 0; s < steps; ++s) {
+    // Decide every drop on the mask before this step, so the result does not depend on
+    // the visiting order.
+    const std::vector<bool> before = out.mask;
+    bool changed = false;
+    for (size_t i = 0; i < before.size(); ++i) {
+      if (!before[i]) continue;
+      for (uint32_t j : neighbours(index, scene.position(i), k, max_distance))
+        if (!before[j]) {
+          out.mask[i] = false;
+          changed = true;
+          break;
+        }
+    }
+    if (!changed) break;
+  }
+  return out;
+}
+
+Vec3 base_color(const GaussianScene& scene, size_t i) {
+  const float* c = scene.sh_of(i);
+  Vec3 rgb;
+  for (int k = 0; k < 3; ++k) rgb[k] = std::clamp(double(sh_dc_to_rgb(c[k])), 0.0, 1.0);
+  return rgb;
+}
+
+Selection select_similar_color(const GaussianScene& scene, const Vec3& color, double tolerance) {
+  const std::string op = "colour selection";
+  check_finite(color, "colour", op);
+  check_finite(tolerance, "tolerance", op);
+  if (!(tolerance >= 0)) throw Error(op, "tolerance must be >= 0");
+  std::vector<bool> m(scene.size());
+  const double t2 = tolerance * tolerance;
+  for (size_t i = 0; i < scene.size(); ++i) {
+    const Vec3 d = base_color(scene, i) - color;
+    m[i] = dot(d, d) <= t2;
+  }
+  return with_mask(scene, std::move(m));
 }
 
 }  // namespace isegman::edit

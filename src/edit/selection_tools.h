@@ -27,9 +27,22 @@ Selection unite(const Selection& a, const Selection& b);
 Selection subtract(const Selection& a, const Selection& b);
 Selection intersect(const Selection& a, const Selection& b);
 
-// Adds, `steps` times over, the k nearest neighbours (by centre) of every selected
-// Gaussian that lie within `max_distance` of it (max_distance <= 0: no limit).
+// Neighbours of a Gaussian for grow/shrink: its k nearest centres within `max_distance`
+// (k >= 1; max_distance <= 0: no limit), or with k = 0 every centre within
+// `max_distance` (> 0 then: a radius in scene units).
+// Adds, `steps` times over, the neighbours of every selected Gaussian.
 Selection grow(const GaussianScene& scene, const Selection& selection, int k, double max_distance = 0, int steps = 1);
+// The opposite (an erosion): `steps` times over, drops every selected Gaussian that has
+// an unselected neighbour (same neighbour rule as grow).
+Selection shrink(const GaussianScene& scene, const Selection& selection, int k, double max_distance = 0,
+                 int steps = 1);
+
+// Base colour of Gaussian i: the SH DC term as the renderer shows it head-on,
+// clamp(0.5 + C0 f_dc, 0, 1) per channel.
+Vec3 base_color(const GaussianScene& scene, size_t i);
+// Gaussians whose base colour lies within `tolerance` (Euclidean distance in RGB, [0, 1]
+// per channel, so 0..sqrt(3)) of `color` (the eyedropper).
+Selection select_similar_color(const GaussianScene& scene, const Vec3& color, double tolerance);
 
 // k nearest centres of every query point (the tool grow() is built on), exposed for
 // tests: result[q] lists up to k indices, nearest first (ties by index).
@@ -37,6 +50,8 @@ class CentreIndex {
  public:
   explicit CentreIndex(const GaussianScene& scene);
   std::vector<uint32_t> nearest(const Vec3& p, int k, double max_distance) const;
+  // Every centre within `radius` of p (boundary included), in index order.
+  std::vector<uint32_t> within(const Vec3& p, double radius) const;
 
  private:
   struct Node {

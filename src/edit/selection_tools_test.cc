@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/sh.h"
 #include "edit/test_scenes.h"
 
 namespace isegman::edit {
@@ -95,6 +96,57 @@ TEST(SelectionTools, GrowAddsNeighbours) {
   EXPECT_EQ(grow(s, seed, 4, 1.5).mask, flags({4, 5, 6}));  // limited by distance
   EXPECT_THROW(grow(s, seed, 0), Error);
   EXPECT_TRUE(grow(s, Selection::none_of(s), 3).empty());
+  // k = 0: every neighbour within a radius in scene units.
+  EXPECT_EQ(grow(s, seed, 0, 2.0).mask, flags({3, 4, 5, 6, 7}));
+  EXPECT_EQ(grow(s, seed, 0, 1.0, 2).mask, flags({3, 4, 5, 6, 7}));
+  EXPECT_THROW(grow(s, seed, 0, -1), Error);
+}
+
+TEST(SelectionTools, RadiusQueryMatchesBruteForce) {
+  const GaussianScene s = testing::random_scene(2000, 0, 9, false, false);
+  const CentreIndex index(s);
+  testing::TestRng rng(6);
+  for (int q = 0; q < 50; ++q) {
+    const Vec3 p{rng.range(-1.2, 1.2), rng.range(-1.2, 1.2), rng.range(-1.2, 1.2)};
+    const double r = rng.range(0.01, 0.4);
+    std::vector<uint32_t> want;
+    for (uint32_t i = 0; i < s.size(); ++i) {
+      const Vec3 d = s.position(i) - p;
+      if (dot(d, d) <= r * r) want.push_back(i);
+    }
+    EXPECT_EQ(index.within(p, r), want);
+  }
+}
+
+TEST(SelectionTools, ShrinkErodesTheBorder) {
+  const GaussianScene s = line();
+  const Selection run = Selection::from_mask(s, flags({2, 3, 4, 5, 6}));
+  // Each end has an unselected nearest neighbour; the middle ones do not.
+  EXPECT_EQ(shrink(s, run, 2).mask, flags({3, 4, 5}));
+  EXPECT_EQ(shrink(s, run, 2, 0, 2).mask, flags({4}));
+  EXPECT_EQ(shrink(s, run, 0, 1.0).mask, flags({3, 4, 5}));
+  EXPECT_EQ(shrink(s, run, 0, 2.0).mask, flags({4}));
+  // Everything selected has no unselected neighbour: nothing changes.
+  EXPECT_EQ(shrink(s, Selection::all_of(s), 3).count(), 10u);
+  // Shrink undoes a grow of a lone seed's neighbours back to the seed here.
+  const Selection seed = Selection::from_mask(s, flags({5}));
+  EXPECT_EQ(shrink(s, grow(s, seed, 2), 2).mask, flags({5}));
+  EXPECT_THROW(shrink(s, run, 2, 0, 0), Error);
+}
+
+TEST(SelectionTools, SimilarColour) {
+  GaussianScene s = line();
+  for (size_t i = 0; i < 10; ++i) {  // base colour (i / 10, 0.5, 0.5)
+    float* c = s.sh_of(i);
+    c[0] = rgb_to_sh_dc(float(i) / 10.f);
+  }
+  const Vec3 c3 = base_color(s, 3);
+  EXPECT_NEAR(c3.x, 0.3, 1e-6);
+  EXPECT_NEAR(c3.y, 0.5, 1e-6);
+  EXPECT_EQ(select_similar_color(s, c3, 0.1001).mask, flags({2, 3, 4}));
+  EXPECT_EQ(select_similar_color(s, c3, 0).mask, flags({3}));
+  EXPECT_EQ(select_similar_color(s, {0.3, 0.9, 0.5}, 0.2).count(), 0u);
+  EXPECT_THROW(select_similar_color(s, c3, -1), Error);
 }
 
 }  // namespace

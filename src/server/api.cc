@@ -181,7 +181,8 @@ void register_routes(httplib::Server& server, AppState& app) {
   routes->get("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     check_params(req, {"format"});
     const std::string f = req.has_param("format") ? param(req, "format") : "ply";
-    if (f != "ply" && f != "splat" && f != "spz") bad_request("format: expected ply, splat or spz");
+    if (f != "ply" && f != "compressed.ply" && f != "splat" && f != "spz" && f != "sog")
+      bad_request("format: expected ply, compressed.ply, splat, spz or sog");
     const std::vector<uint8_t> bytes = app.export_bytes(output_format_for_path("edited." + f));
     res.set_header("Content-Disposition", "attachment; filename=\"edited." + f + "\"");
     res.set_header("Cache-Control", "no-store");
@@ -226,7 +227,19 @@ void register_routes(httplib::Server& server, AppState& app) {
   }));
   routes->post(R"(/api/edit/([a-z]{1,16}))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const json body = req.body.empty() ? json::object() : parse_body(req.body);
-    send_json(res, to_json(app.edit(edit_from_json(req.matches[1].str(), body))));
+    send_json(res, to_json(app.edit(edit_from_json(req.matches[1].str(), body), scene_source_from_json(body))));
+  }));
+  // Scenes to combine: the data folder's and the uploaded ones; an upload is the raw file.
+  routes->get("/api/files", guarded([&app](const httplib::Request&, httplib::Response& res) {
+    send_json(res, {{"data_dir", app.data_folder()},
+                    {"files", to_json(app.data_files())},
+                    {"uploads", to_json(app.uploads())},
+                    {"max_upload_bytes", app.options().max_upload_bytes}});
+  }));
+  routes->post("/api/upload", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    check_params(req, {"name"});
+    if (!req.has_param("name")) bad_request("missing parameter 'name' (the file's name, e.g. scene.spz)");
+    send_json(res, to_json(app.upload(param(req, "name"), req.body)));
   }));
   routes->post("/api/export", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const json body = parse_body(req.body);

@@ -74,32 +74,102 @@ SettingsRequest settings_from_json(const json& body) {
   return s;
 }
 
-SelectRequest select_from_json(const std::string& tool, const json& body) {
-  SelectRequest r;
-  const std::string mode = json_string(body, "mode", 16, std::string("replace"));
-  if (tool == "box") {
-    r.tool = SelectTool::kBox;
-    r.lo = json_vec3(body, "lo", kCoordLimit);
-    r.hi = json_vec3(body, "hi", kCoordLimit);
-  } else if (tool == "sphere") {
-    r.tool = SelectTool::kSphere;
-    r.center = json_vec3(body, "center", kCoordLimit);
-    r.radius = json_number(body, "radius", 0, kCoordLimit);
-  } else if (tool == "invert") {
-    r.tool = SelectTool::kInvert;
-  } else if (tool == "clear") {
-    r.tool = SelectTool::kClear;
-  } else if (tool == "all") {
-    r.tool = SelectTool::kAll;
-  } else {
-    throw AppError(ErrorKind::kNotFound, "no selection tool '" + tool + "' (box, sphere, invert, clear, all)");
+namespace {
+
+// {view: K} or {camera: {...}}: the camera a screen-space tool was drawn in.
+void camera_ref_from(const json& body, SelectRequest& r) {
+  const bool has_view = body.contains("view") && !body["view"].is_null();
+  const bool has_camera = body.contains("camera") && !body["camera"].is_null();
+  if (has_view == has_camera) bad_request("give either 'view' (a camera index) or 'camera' (a free camera)");
+  if (has_view) r.camera_index = json_integer(body, "view", 0, 1 << 20);
+  else r.free = free_camera_from_json(body["camera"]);
+}
+
+// [[x, y], ...] in pixels of the camera's full-size image.
+std::vector<edit::Point2> points_from(const json& body) {
+  if (!body.contains("points") || !body["points"].is_array()) bad_request("points: expected an array of [x, y]");
+  const json& a = body["points"];
+  if (a.size() > 100000) bad_request("points: more than 100000");
+  std::vector<edit::Point2> out;
+  out.reserve(a.size());
+  for (const json& p : a) {
+    if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
+      bad_request("points: each point must be [x, y] numbers");
+    const double x = p[0].get<double>(), y = p[1].get<double>();
+    if (!(std::isfinite(x) && std::isfinite(y) && std::fabs(x) <= 1e6 && std::fabs(y) <= 1e6))
+      bad_request("points: coordinates must be finite and within +-1e6");
+    out.push_back({x, y});
   }
-  if (r.tool == SelectTool::kBox || r.tool == SelectTool::kSphere) {
-    try {
-      r.mode = edit::parse_combine_mode(mode);
-    } catch (const Error& e) {
-      bad_request(e.what());
-    }
+  return out;
+}
+
+}  // namespace
+
+SelectRequest select_from_json(const std::string& tool, const json& body) {
+  edit::ShapeKind shape = edit::ShapeKind::kRect;
+  const std::optional<edit::SelectKind> kind = edit::parse_select_kind(tool, &shape);
+  if (!kind) throw AppError(ErrorKind::kNotFound, "no selection tool '" + tool + "' (" + edit::select_kind_list() + ")");
+  SelectRequest r;
+  edit::SelectOp& op = r.op;
+  op.kind = *kind;
+  switch (op.kind) {
+    case edit::SelectKind::kBox:
+      json_only_keys(body, {"lo", "hi", "mode"});
+      op.lo = json_vec3(body, "lo", kCoordLimit);
+      op.hi = json_vec3(body, "hi", kCoordLimit);
+      if (op.lo.x > op.hi.x || op.lo.y > op.hi.y || op.lo.z > op.hi.z) bad_request("box: lo must not exceed hi on any axis");
+      break;
+    case edit::SelectKind::kSphere:
+      json_only_keys(body, {"center", "radius", "mode"});
+      op.center = json_vec3(body, "center", kCoordLimit);
+      op.radius = json_number(body, "radius", 0, kCoordLimit);
+      if (!(op.radius > 0)) bad_request("radius: must be > 0");
+      break;
+    case edit::SelectKind::kShape:
+      json_only_keys(body, {"view", "camera", "points", "radius", "mode", "visible", "min_weight"});
+      camera_ref_from(body, r);
+      op.shape.kind = shape;
+      op.shape.points = points_from(body);
+      if (shape == edit::ShapeKind::kBrush) op.shape.radius = json_number(body, "radius", 0.5, 1e4);
+      op.screen.visible_only = json_bool(body, "visible", false);
+      op.screen.min_weight = json_number(body, "min_weight", 0, 1, 0.1);
+      break;
+    case edit::SelectKind::kColor:
+      json_only_keys(body, {"view", "camera", "x", "y", "color", "tolerance", "mode"});
+      if (body.contains("color")) {
+        const edit::Rgb c = parse_rgb(json_string(body, "color", 64), "color");
+        op.color = Vec3{c.r, c.g, c.b};
+      } else {
+        camera_ref_from(body, r);
+        op.x = json_number(body, "x", 0, 1e5);
+        op.y = json_number(body, "y", 0, 1e5);
+      }
+      op.tolerance = json_number(body, "tolerance", 0, 1.8, 0.1);
+      break;
+    case edit::SelectKind::kOpacity:
+    case edit::SelectKind::kSize:
+      json_only_keys(body, {"min", "max", "mode"});
+      op.min = json_number(body, "min", 0, op.kind == edit::SelectKind::kOpacity ? 1 : kCoordLimit, 0.0);
+      op.max = json_number(body, "max", 0, op.kind == edit::SelectKind::kOpacity ? 1 : kCoordLimit,
+                           op.kind == edit::SelectKind::kOpacity ? 1.0 : kCoordLimit);
+      if (op.min > op.max) bad_request("min: must not exceed max");
+      break;
+    case edit::SelectKind::kGrow:
+    case edit::SelectKind::kShrink:
+      json_only_keys(body, {"k", "radius", "steps", "mode"});
+      op.k = json_integer(body, "k", 0, 1000, body.contains("radius") ? 0 : 8);
+      op.distance = json_number(body, "radius", 0, kCoordLimit, 0.0);
+      op.steps = json_integer(body, "steps", 1, 100, 1);
+      if (op.k == 0 && !(op.distance > 0)) bad_request("radius: give k (neighbours) or a radius > 0");
+      break;
+    default:
+      json_only_keys(body, {"mode"});
+      break;
+  }
+  try {
+    op.mode = edit::parse_combine_mode(json_string(body, "mode", 16, std::string("replace")));
+  } catch (const Error& e) {
+    bad_request(e.what());
   }
   return r;
 }
@@ -127,8 +197,10 @@ edit::EditOp edit_from_json(const std::string& name, const json& body) {
     case edit::EditKind::kCombine:
       op.transform = similarity_from(body);
       op.direction = edit::CombineDirection::kFrom;
-      op.other_path = json_string(body, "path", 4096);
-      if (op.other_path.empty()) bad_request("path: empty");
+      if (body.contains("path") == body.contains("upload"))
+        bad_request("give either 'path' (inside the data folder) or 'upload' (an uploaded scene's name)");
+      op.other_path = json_string(body, body.contains("upload") ? "upload" : "path", 4096);
+      if (op.other_path.empty()) bad_request(std::string(body.contains("upload") ? "upload" : "path") + ": empty");
       break;
     default:
       break;
@@ -250,6 +322,22 @@ json to_json(const Timeline& t) {
 json to_json(const SelectionBounds& b) {
   return {{"of", b.of_selection ? "selection" : "scene"}, {"count", b.count},          {"lo", vec_json(b.lo)},
           {"hi", vec_json(b.hi)},                         {"center", vec_json(b.center)}, {"radius", b.radius}};
+}
+
+SceneSource scene_source_from_json(const json& body) {
+  return body.is_object() && body.contains("upload") ? SceneSource::kUpload : SceneSource::kDataFolder;
+}
+
+json to_json(const SceneFileEntry& e) {
+  json j = {{"name", e.name}, {"kind", e.kind}, {"bytes", e.bytes}};
+  if (e.gaussians) j["gaussians"] = e.gaussians;
+  return j;
+}
+
+json to_json(const std::vector<SceneFileEntry>& entries) {
+  json a = json::array();
+  for (const SceneFileEntry& e : entries) a.push_back(to_json(e));
+  return a;
 }
 
 json to_json(const ExportResult& r) { return {{"path", r.path}, {"gaussians", r.gaussians}, {"notes", r.notes}}; }

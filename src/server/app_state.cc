@@ -57,6 +57,7 @@ AppState::AppState(SceneBundle bundle, AppOptions options)
       options_(std::move(options)),
       data_dir_(options_.data_dir.empty() ? default_data_dir(bundle_) : options_.data_dir),
       scene_(checked(std::move(bundle.gaussians), bundle_.ply_path)),
+      files_(data_dir_, options_.max_upload_bytes),
       segmentation_(bundle_, segmentation_options(options_), scene_, jobs_, log_) {}
 
 AppState::~AppState() { stop(); }
@@ -77,9 +78,13 @@ SceneInfo AppState::scene_info() const {
   s.cameras = bundle_.cameras;
   s.preview_side = options_.preview_side;
   s.out_dir = fs::absolute(options_.out_dir).lexically_normal().string();
-  s.data_dir = data_dir_.empty() ? "" : fs::absolute(data_dir_).lexically_normal().string();
+  s.data_dir = data_folder();
   for (int k = 0; k < 3; ++k) s.background[k] = options_.background[k];
   return s;
+}
+
+std::string AppState::data_folder() const {
+  return data_dir_.empty() ? "" : fs::absolute(data_dir_).lexically_normal().string();
 }
 
 AppStatus AppState::status() const {
@@ -124,17 +129,28 @@ std::vector<uint8_t> AppState::render(const RenderRequest& r) const {
 }
 
 EditResult AppState::select(const SelectRequest& request) {
-  EditResult r = scene_.select(request);
+  edit::SelectOp op = request.op;
+  if (request.free) {
+    op.camera = make_free_camera(*request.free);
+  } else if (request.camera_index >= 0) {
+    if (request.camera_index >= int(bundle_.cameras.size()))
+      invalid("view: no camera " + std::to_string(request.camera_index) + " (there are " +
+              std::to_string(bundle_.cameras.size()) + ")");
+    op.camera = bundle_.cameras[size_t(request.camera_index)];
+  }
+  op.screen.render.threads = options_.threads;
+  EditResult r = scene_.select(op);
   log_.note(r.label);
   return r;
 }
 
-EditResult AppState::edit(const edit::EditOp& op) {
+EditResult AppState::edit(const edit::EditOp& op, SceneSource source) {
   // Load the other scene of a combine before taking the scene lock; only from inside
-  // the data folder.
+  // the data folder or the uploads.
   GaussianScene other;
   if (op.kind == edit::EditKind::kCombine) {
-    const std::string path = resolve_input_path(data_dir_, op.other_path);
+    const std::string path = source == SceneSource::kUpload ? files_.upload_path(op.other_path)
+                                                            : resolve_input_path(data_dir_, op.other_path);
     try {
       std::error_code ec;
       if (fs::is_directory(path, ec)) {
@@ -155,6 +171,13 @@ EditResult AppState::edit(const edit::EditOp& op) {
   return r;
 }
 
+SceneFileEntry AppState::upload(const std::string& name, const std::string& bytes) {
+  SceneFileEntry e = files_.upload(name, bytes);
+  log_.note("uploaded " + e.name + ": " + std::to_string(e.gaussians) + " Gaussians (" + std::to_string(e.bytes) +
+            " bytes)");
+  return e;
+}
+
 EditResult AppState::undo(StepFilter filter) {
   EditResult r = scene_.undo(filter);
   log_.note("undo: " + r.label);
@@ -173,7 +196,7 @@ EditResult AppState::redo(StepFilter filter) {
 
 ExportResult AppState::export_to(const std::string& relative_path) {
   ExportResult r;
-  r.path = resolve_output_path(options_.out_dir, relative_path, {".ply", ".splat", ".spz"});
+  r.path = resolve_output_path(options_.out_dir, relative_path, {".ply", ".splat", ".spz", ".sog"});
   r.gaussians = scene_.write(r.path, {bundle_.ply_path, bundle_.cameras_path}, &r.notes);
   log_.note("exported " + std::to_string(r.gaussians) + " Gaussians to " + r.path);
   return r;

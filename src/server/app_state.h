@@ -22,6 +22,7 @@
 #include "server/edit_state.h"
 #include "server/free_camera.h"
 #include "server/jobs.h"
+#include "server/scene_files.h"
 #include "server/segmentation.h"
 #include "server/segmentation_jobs.h"
 
@@ -38,6 +39,7 @@ struct AppOptions {
   int preview_side = 640;               // default longest side of navigation renders
   float background[3] = {0.f, 0.f, 0.f};
   int threads = 0;
+  uint64_t max_upload_bytes = uint64_t(256) << 20;  // scenes uploaded to combine
   AppOptions() { views.max_side = 512; }
 };
 
@@ -74,6 +76,9 @@ struct AppStatus {
   uint64_t version = 0;
 };
 
+// Where a combine's other scene comes from.
+enum class SceneSource { kDataFolder, kUpload };
+
 struct ExportResult {
   std::string path;
   size_t gaussians = 0;
@@ -107,8 +112,13 @@ class AppState {
   EditResult select(const SelectRequest& request);
   SelectionBounds selection_bounds() const { return scene_.selection_bounds(); }
   // Runs an edit (edit/edit_op.h, the CLI's vocabulary); a combine's other scene is
-  // read from `op.other_path` inside the data folder.
-  EditResult edit(const edit::EditOp& op);
+  // `op.other_path` inside the data folder, or the upload of that name.
+  EditResult edit(const edit::EditOp& op, SceneSource source = SceneSource::kDataFolder);
+  // Scenes to combine: the data folder's and the uploaded ones (scene_files.h).
+  std::vector<SceneFileEntry> data_files() const { return files_.list_data(); }
+  std::string data_folder() const;  // absolute; "" when none
+  std::vector<SceneFileEntry> uploads() const { return files_.list_uploads(); }
+  SceneFileEntry upload(const std::string& name, const std::string& bytes);
   // One history of clicks, selections and edits (EditState's timeline): the scene and
   // selection are restored at once; walking over a click also queues a job that brings
   // the segmentation's clicks in line (EditResult::job).
@@ -128,6 +138,7 @@ class AppState {
   const std::string data_dir_;
   ActivityLog log_;
   EditState scene_;
+  SceneFiles files_;
   JobRunner jobs_;
   SegmentationJobs segmentation_;
 };

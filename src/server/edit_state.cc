@@ -116,42 +116,20 @@ Timeline EditState::timeline() const {
   return timeline_;
 }
 
-EditResult EditState::select(const SelectRequest& r) {
+EditResult EditState::select(const edit::SelectOp& op) {
   std::unique_lock<std::shared_mutex> lock(mu_);
-  const GaussianScene& scene = session_.scene();
-  const Selection current = session_.selection();
-  const std::string mode = edit::combine_mode_name(r.mode);
-  Selection next;
-  std::string label;
-  switch (r.tool) {
-    case SelectTool::kBox:
-      if (r.lo.x > r.hi.x || r.lo.y > r.hi.y || r.lo.z > r.hi.z) invalid("box: lo must not exceed hi on any axis");
-      next = edit::combine_selections(current, edit::select_box(scene, r.lo, r.hi), r.mode);
-      label = "box selection (" + mode + ")";
-      break;
-    case SelectTool::kSphere:
-      if (!(r.radius > 0)) invalid("radius: must be > 0");
-      next = edit::combine_selections(current, edit::select_sphere(scene, r.center, r.radius), r.mode);
-      label = "sphere selection (" + mode + ")";
-      break;
-    case SelectTool::kInvert:
-      next = edit::invert(current);
-      label = "invert selection";
-      break;
-    case SelectTool::kClear:
-      next = Selection::none_of(scene);
-      label = "clear selection";
-      break;
-    case SelectTool::kAll:
-      next = Selection::all_of(scene);
-      label = "select all";
-      break;
+  edit::SelectOutcome next;
+  try {
+    next = edit::run_select(session_.scene(), session_.selection(), op);
+  } catch (const AppError&) {
+    throw;
+  } catch (const Error& e) {
+    invalid(e.what());
   }
-  label += ": " + std::to_string(next.count()) + " Gaussians";
-  session_.select(next, label);
-  record(StepKind::kSelect, label);
+  session_.select(next.selection, next.label);
+  record(StepKind::kSelect, next.label);
   ++revision_;
-  EditResult out = result(label, {});
+  EditResult out = result(next.label, {});
   out.kind = StepKind::kSelect;
   return out;
 }

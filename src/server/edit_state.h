@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <shared_mutex>
 #include <string>
 #include <vector>
@@ -14,20 +15,22 @@
 #include "core/virtual_views.h"
 #include "core/scene.h"
 #include "edit/edit_op.h"
+#include "edit/select_op.h"
 #include "edit/history.h"
 #include "edit/scene_format.h"
 #include "render/rasterizer.h"
+#include "server/free_camera.h"
 
 namespace isegman::server {
 
-enum class SelectTool { kBox, kSphere, kInvert, kClear, kAll };
-
+// A selection tool's request: the edit vocabulary's SelectOp (edit/select_op.h, what
+// `isegman edit`'s selection flags mean too). The screen-space tools and the eyedropper
+// name the camera they were drawn in: a training camera or a free one, which the app
+// resolves into `op.camera`.
 struct SelectRequest {
-  SelectTool tool = SelectTool::kClear;
-  Vec3 lo, hi;           // box
-  Vec3 center;           // sphere
-  double radius = 0;     // sphere
-  edit::CombineMode mode = edit::CombineMode::kReplace;  // box, sphere
+  edit::SelectOp op;
+  int camera_index = -1;
+  std::optional<FreeCameraSpec> free;
 };
 
 // The kinds of step in the one history: a segmentation click (its selection applied to
@@ -93,7 +96,9 @@ class EditState {
   RobustBounds robust_bounds() const;
   EditStatus status() const;
 
-  EditResult select(const SelectRequest& request);
+  // Runs a selection tool (its camera already resolved); AppError(kInvalid) for
+  // parameters the tool refuses.
+  EditResult select(const edit::SelectOp& op);
   // Makes a click's selection current when the scene still has `fingerprint`; false
   // (nothing changed) when the scene was edited meanwhile.
   // Recorded in the history as one step of `kind` (a click, or kSelect for a re-run

@@ -5,6 +5,7 @@
 #include <poll.h>
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 
@@ -143,7 +144,8 @@ class GuardedServer : public httplib::Server {
   }
 
   bool process_and_close_socket(socket_t fd) override {
-    const auto deadline = Clock::now() + std::chrono::milliseconds(long(limits_.request_seconds * 1000));
+    const auto start = Clock::now();
+    auto deadline = start + std::chrono::milliseconds(long(limits_.request_seconds * 1000));
     std::string head;
     size_t header_end = std::string::npos;
     char buf[4096];
@@ -164,7 +166,10 @@ class GuardedServer : public httplib::Server {
       header_end = head.find("\r\n\r\n");
     }
     if (header_end != std::string::npos) {
-      const HeadCheck check = check_request_head(head.substr(0, header_end + 4), limits_.max_body_bytes);
+      const bool upload = is_upload(head);
+      if (upload) deadline = start + std::chrono::milliseconds(long(limits_.upload_seconds * 1000));
+      const HeadCheck check = check_request_head(head.substr(0, header_end + 4),
+                                                 upload ? limits_.max_upload_bytes : limits_.max_body_bytes);
       if (check.status != 0) {
         answer(fd, check.status, check.message);
       } else {
@@ -179,6 +184,14 @@ class GuardedServer : public httplib::Server {
     return true;
   }
 
+  // "POST /api/upload?..." or "POST /api/upload HTTP/1.1": the one route with a large body.
+  static bool is_upload(const std::string& head) {
+    const std::string prefix = "POST /api/upload";
+    if (head.compare(0, prefix.size(), prefix) != 0 || head.size() <= prefix.size()) return false;
+    const char next = head[prefix.size()];
+    return next == '?' || next == ' ';
+  }
+
   HttpLimits limits_;
 };
 
@@ -190,7 +203,8 @@ struct HttpServer::Impl {
 
 HttpServer::HttpServer(AppState& app, const HttpLimits& limits) : impl_(std::make_unique<Impl>(limits)) {
   GuardedServer& s = impl_->server;
-  s.set_payload_max_length(limits.max_body_bytes);
+  // Each request's own limit is checked from its head (process_and_close_socket).
+  s.set_payload_max_length(std::max(limits.max_body_bytes, limits.max_upload_bytes));
   s.set_read_timeout(10, 0);
   s.set_write_timeout(30, 0);
   const int workers = std::max(1, limits.workers);

@@ -19,6 +19,9 @@ struct HttpLimits {
   double request_seconds = 10;     // to receive a whole request (headers + body)
   size_t max_header_bytes = 16384;
   size_t max_body_bytes = 1 << 20;
+  // POST /api/upload (a scene to combine) alone takes a larger body, in a longer time.
+  size_t max_upload_bytes = size_t(256) << 20;
+  double upload_seconds = 300;
   int workers = 32;                // connections served at once
 };
 

@@ -1,12 +1,15 @@
 #include "server/segmentation.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "io/image_io.h"
 #include "segment/overlay.h"
 #include "segment/views.h"
 #include "server/app_error.h"
+#include "server/view_reuse.h"
 
 namespace isegman::server {
 
@@ -78,10 +81,68 @@ void Segmentation::open(std::shared_ptr<const SceneBundle> snapshot, uint64_t fi
   fingerprint_ = fingerprint;
   log_.clear();
   redo_.clear();
-  rebuild(progress);
+  // The scene this one was edited from is the newest kept one.
+  const Kept* donor = kept_.empty() ? nullptr : &kept_.back();
+  rebuild(progress, donor ? donor->session.get() : nullptr, donor ? &donor->snapshot->gaussians : nullptr);
 }
 
-void Segmentation::rebuild(const Progress& progress) {
+void Segmentation::prepare(std::shared_ptr<const SceneBundle> snapshot, uint64_t fingerprint, const Progress& progress) {
+  if (prepared_for(fingerprint) || fingerprint == fingerprint_) return;
+  prepared_.reset();
+  Prepared p;
+  p.chosen = segment::sample_views(snapshot->cameras, settings_.views_spec);
+  std::vector<int> all = p.chosen;
+  if (session_)
+    for (const segment::SegmentView& v : session_->views())
+      if (v.camera_index >= 0 && std::find(all.begin(), all.end(), v.camera_index) == all.end())
+        all.push_back(v.camera_index);
+  std::vector<segment::SegmentView> views =
+      build_views(*snapshot, all, session_.get(), snapshot_ ? &snapshot_->gaussians : nullptr, progress, int(all.size()));
+  for (size_t k = 0; k < views.size(); ++k) (k < p.chosen.size() ? p.views : p.extra).push_back(std::move(views[k]));
+  p.snapshot = std::move(snapshot);
+  p.fingerprint = fingerprint;
+  prepared_ = std::move(p);
+}
+
+std::vector<segment::SegmentView> Segmentation::build_views(const SceneBundle& snap, const std::vector<int>& chosen,
+                                                            const segment::Session* donor,
+                                                            const GaussianScene* donor_scene, const Progress& progress,
+                                                            int total) {
+  last_reused_ = last_rebuilt_ = 0;
+  std::optional<SceneDiff> diff;
+  if (donor && donor_scene) diff = diff_scenes(*donor_scene, snap.gaussians);
+  const RenderSettings rs = view_render_settings(view_options_);
+  std::vector<segment::SegmentView> views;
+  views.reserve(chosen.size());
+  for (size_t k = 0; k < chosen.size(); ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const segment::SegmentView* old = nullptr;
+    if (diff)
+      for (const segment::SegmentView& v : donor->views())
+        if (v.camera_index == chosen[k]) old = &v;
+    char line[256];
+    const std::string& name = snap.cameras.at(size_t(chosen[k])).name;
+    if (old && !diff_reaches_view(*donor_scene, snap.gaussians, *diff, old->camera, rs)) {
+      views.push_back(reuse_view(*old, snap.gaussians, view_options_));
+      ++last_reused_;
+      std::snprintf(line, sizeof line, "view %zu/%zu %s: kept (the change does not reach it), %.0f ms", k + 1,
+                    chosen.size(), name.c_str(),
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    } else {
+      models::SamTimings t;
+      views.push_back(segment::build_view(snap.gaussians, snap.cameras.at(size_t(chosen[k])), chosen[k], *sam_,
+                                          view_options_, &t));
+      ++last_rebuilt_;
+      std::snprintf(line, sizeof line, "view %zu/%zu %s: re-rendered, %.0f ms (%s)", k + 1, chosen.size(), name.c_str(),
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(),
+                    t.from_cache ? "embedding from cache" : "embedding computed");
+    }
+    if (progress) progress(int(k + 1), total, line);
+  }
+  return views;
+}
+
+void Segmentation::rebuild(const Progress& progress, const segment::Session* donor, const GaussianScene* donor_scene) {
   session_.reset();
   free_views_.clear();
   std::vector<int> chosen = segment::sample_views(snapshot_->cameras, settings_.views_spec);
@@ -90,12 +151,18 @@ void Segmentation::rebuild(const Progress& progress) {
     if (c.camera_index >= 0 && std::find(chosen.begin(), chosen.end(), c.camera_index) == chosen.end())
       chosen.push_back(c.camera_index);
   const int total = int(chosen.size()) + int(log_.size());
-  int done = 0;
-  std::vector<segment::SegmentView> views =
-      segment::build_views(*snapshot_, chosen, *sam_, view_options_, [&](const std::string& line) {
-        ++done;
-        if (progress) progress(done, total, line);
-      });
+  std::vector<segment::SegmentView> views;
+  if (prepared_for(fingerprint_) && prepared_->chosen == chosen) {
+    snapshot_ = prepared_->snapshot;  // the views index its Gaussians
+    views = std::move(prepared_->views);
+    spare_ = std::move(prepared_->extra);
+    spare_fingerprint_ = fingerprint_;
+    if (progress) progress(int(chosen.size()), total, "views prepared after the edit");
+  } else {
+    views = build_views(*snapshot_, chosen, donor, donor_scene, progress, total);
+  }
+  prepared_.reset();
+  int done = int(chosen.size());
   session_ = std::make_unique<segment::Session>(snapshot_->gaussians, std::move(views), sam_, session_options());
   free_views_.assign(session_->views().size(), std::nullopt);
   std::vector<ClickRecord> replay = std::move(log_);
@@ -113,6 +180,14 @@ int Segmentation::view_for(const ClickRecord& c, const Progress& progress) {
     for (size_t k = 0; k < views.size(); ++k)
       if (views[k].camera_index == c.camera_index) return int(k);
     if (c.camera_index >= int(snapshot_->cameras.size())) throw AppError(ErrorKind::kInvalid, "view: no camera " + std::to_string(c.camera_index));
+    if (spare_fingerprint_ == fingerprint_)
+      for (size_t k = 0; k < spare_.size(); ++k)
+        if (spare_[k].camera_index == c.camera_index) {
+          const int added = session_->add_view(std::move(spare_[k]));
+          spare_.erase(spare_.begin() + long(k));
+          free_views_.resize(session_->views().size());
+          return added;
+        }
     if (progress) progress(0, 1, "adding view " + snapshot_->cameras[size_t(c.camera_index)].name);
     const int k = session_->add_view(segment::build_view(snapshot_->gaussians, snapshot_->cameras[size_t(c.camera_index)],
                                                          c.camera_index, *sam_, view_options_));
@@ -164,8 +239,12 @@ void Segmentation::reconfigure(const SegmentSettings& s, const Progress& progres
   segment::sample_views(snapshot_->cameras, s.views_spec);
   settings_ = s;
   kept_.clear();  // made under other settings
+  prepared_.reset();
   redo_.clear();
-  rebuild(progress);
+  // Same scene, same view options: every view of the current session is still valid.
+  const std::unique_ptr<segment::Session> old = std::move(session_);
+  const std::shared_ptr<const SceneBundle> old_snapshot = snapshot_;
+  rebuild(progress, old.get(), old_snapshot ? &old_snapshot->gaussians : nullptr);
 }
 
 const std::vector<bool>& Segmentation::selection() const {

@@ -59,10 +59,21 @@ class Segmentation {
                segment::ViewOptions view_options, SegmentSettings settings);
 
   // Builds the sampled views of `snapshot` (embeddings from the cache when present)
-  // and opens an empty session; the click log is cleared. The segmentation of the scene
+  // and opens an empty session; the click log is cleared. Views the edit since the
+  // previous scene cannot have changed are taken from it (view_reuse.h), and views
+  // prepared ahead for this scene (prepare) are used as they are. The segmentation of the scene
   // it replaces is kept (the last few), so undoing edits back to that scene brings its
   // clicks back (restore); a kept one for `fingerprint` is reopened as it was.
   void open(std::shared_ptr<const SceneBundle> snapshot, uint64_t fingerprint, const Progress& progress);
+  // Builds ahead the views of an edited scene (`snapshot`, not yet current), reusing
+  // the current session's views the edit does not reach; the next open() of that
+  // scene takes them. Cameras clicked in that are not sampled views are prepared too
+  // (the next click is likely there). Reports per view whether it was reused or rebuilt.
+  void prepare(std::shared_ptr<const SceneBundle> snapshot, uint64_t fingerprint, const Progress& progress);
+  bool prepared_for(uint64_t fingerprint) const { return prepared_ && prepared_->fingerprint == fingerprint; }
+  // Of the last views built: how many were reused from the previous scene / rebuilt.
+  int last_reused() const { return last_reused_; }
+  int last_rebuilt() const { return last_rebuilt_; }
   // Fingerprints of the kept segmentations of earlier scenes.
   std::vector<uint64_t> kept() const;
   // Makes the kept segmentation of `fingerprint` current (the current one is kept);
@@ -92,7 +103,13 @@ class Segmentation {
 
  private:
   int view_for(const ClickRecord& click, const Progress& progress);
-  void rebuild(const Progress& progress);
+  // `donor` / `donor_scene`: a session of another scene (or of this one) whose views the
+  // scene change does not reach are reused; nullptr: build every view.
+  void rebuild(const Progress& progress, const segment::Session* donor = nullptr,
+               const GaussianScene* donor_scene = nullptr);
+  std::vector<segment::SegmentView> build_views(const SceneBundle& snapshot, const std::vector<int>& chosen,
+                                                const segment::Session* donor, const GaussianScene* donor_scene,
+                                                const Progress& progress, int total);
   segment::SessionOptions session_options() const;
 
   struct Kept {
@@ -106,6 +123,18 @@ class Segmentation {
   void keep_current();
 
   std::vector<Kept> kept_;  // newest last
+  struct Prepared {
+    std::shared_ptr<const SceneBundle> snapshot;
+    uint64_t fingerprint = 0;
+    std::vector<int> chosen;
+    std::vector<segment::SegmentView> views;  // of `chosen`
+    std::vector<segment::SegmentView> extra;  // of the other cameras clicked in before
+  };
+  std::optional<Prepared> prepared_;
+  // Prepared views of cameras outside the sampled ones, for a click there (scene `spare_fingerprint_`).
+  std::vector<segment::SegmentView> spare_;
+  uint64_t spare_fingerprint_ = 0;
+  int last_reused_ = 0, last_rebuilt_ = 0;
   std::shared_ptr<const models::SamModel> sam_;
   segment::SessionOptions base_session_;
   segment::ViewOptions view_options_;

@@ -89,10 +89,16 @@ void SegmentationJobs::prepare_job(const JobRunner::Report& report) {
 void SegmentationJobs::ensure_current(const Progress& progress) {
   if (!seg_ || !seg_->is_open()) throw AppError(ErrorKind::kUnavailable, "segmentation is not ready");
   if (seg_->fingerprint() == scene_.fingerprint()) return;
-  log_.note("the scene was edited: segmenting the edited scene (views re-rendered, clicks start over)");
-  set_state("preparing", "re-rendering the views of the edited scene");
+  const uint64_t now = scene_.fingerprint();
+  const bool prepared = seg_->prepared_for(now);
+  log_.note(prepared ? "the scene was edited: segmenting the edited scene (its views were prepared; clicks start over)"
+                     : "the scene was edited: segmenting the edited scene (changed views re-rendered, clicks start over)");
+  set_state("preparing", "updating the views of the edited scene");
   std::shared_ptr<const SceneBundle> snap = snapshot();
   seg_->open(snap, snap->gaussians.fingerprint(), progress);
+  if (!prepared && seg_->last_reused() + seg_->last_rebuilt() > 0)
+    log_.note("views: " + std::to_string(seg_->last_reused()) + " kept, " + std::to_string(seg_->last_rebuilt()) +
+              " re-rendered");
   set_state("ready", kReady);
 }
 
@@ -230,21 +236,53 @@ uint64_t SegmentationJobs::set_settings(const SettingsRequest& request) {
 
 void SegmentationJobs::scene_changed() {
   const uint64_t fp = scene_.fingerprint();
+  bool restore = false;
   {
     std::lock_guard<std::mutex> lock(status_mu_);
-    if (published_.state != "ready" || std::find(kept_.begin(), kept_.end(), fp) == kept_.end()) return;
+    if (published_.state != "ready" || fp == seg_fingerprint_) return;
+    restore = std::find(kept_.begin(), kept_.end(), fp) != kept_.end();
   }
   try {
-    jobs_.submit("restore segmentation", [this](const JobRunner::Report&) {
+    if (restore) {
+      jobs_.submit("restore segmentation", [this](const JobRunner::Report&) {
+        std::lock_guard<std::mutex> seg_lock(seg_mu_);
+        const uint64_t now = scene_.fingerprint();
+        if (!seg_ || seg_->fingerprint() == now || !seg_->restore(now)) return;
+        publish(false);
+        log_.note("the scene is back to an earlier state: its " + std::to_string(seg_->clicks().size()) +
+                  " click(s) are current again");
+      });
+      return;
+    }
+    // A new scene: build its views now, in the background, so that the first click on
+    // it does not wait for them; views the edit does not reach are kept as they are.
+    // The evidence stays that of the scene before the edit until that click.
+    jobs_.submit("update views after the edit", [this](const JobRunner::Report& report) {
       std::lock_guard<std::mutex> seg_lock(seg_mu_);
       const uint64_t now = scene_.fingerprint();
-      if (!seg_ || seg_->fingerprint() == now || !seg_->restore(now)) return;
-      publish(false);
-      log_.note("the scene is back to an earlier state: its " + std::to_string(seg_->clicks().size()) +
-                " click(s) are current again");
+      if (!seg_ || !seg_->is_open() || seg_->fingerprint() == now || seg_->prepared_for(now)) return;
+      for (uint64_t k : seg_->kept())
+        if (k == now) return;  // restored instead, on the next click
+      const auto t0 = std::chrono::steady_clock::now();
+      // Left for another scene (undo, another edit) meanwhile: stop after this view.
+      struct Left {};
+      try {
+        seg_->prepare(snapshot(), now, [&](int done, int total, const std::string& line) {
+          report(done, total, line);
+          if (scene_.fingerprint() != now) throw Left{};
+        });
+      } catch (const Left&) {
+        log_.note("stopped preparing the views of an edited scene: the scene changed again");
+        return;
+      }
+      char line[200];
+      std::snprintf(line, sizeof line, "views of the edited scene: %d kept (the edit does not reach them), %d re-rendered (%.1f s)",
+                    seg_->last_reused(), seg_->last_rebuilt(),
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      log_.note(line);
     });
   } catch (const AppError&) {
-    // Queue full or stopping: the next click re-segments instead.
+    // Queue full or stopping: the next click rebuilds the views instead.
   }
 }
 

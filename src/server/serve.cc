@@ -26,7 +26,9 @@ int serve_scene(const SceneBundle& bundle, const ServeOptions& options) {
   int code = 0;
   {
     AppState app(bundle, options.app);
-    HttpServer http(app);
+    HttpLimits limits;
+    limits.max_upload_bytes = size_t(options.app.max_upload_bytes);
+    HttpServer http(app, limits);
     const int port = http.start(options.host, options.port);
     std::printf("isegman serve: %zu Gaussians, %zu cameras; exports go to %s\n", bundle.gaussians.size(),
                 bundle.cameras.size(), options.app.out_dir.c_str());

@@ -20,72 +20,13 @@
 #include "server/jobs.h"
 #include "server/output_paths.h"
 #include "core/test_dirs.h"
+#include "server/test_server.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace isegman::server {
 namespace {
-
-std::string temp_dir(const std::string& name) { return testing::fresh_temp_dir("isegman-server-test-", name); }
-
-DemoScene small_demo() {
-  DemoSceneOptions o;
-  o.cameras = 8;
-  o.width = 200;
-  o.height = 150;
-  o.density = 0.3f;
-  o.sh_degree = 1;
-  return make_demo_scene(o);
-}
-
-struct Running {
-  std::unique_ptr<AppState> app;
-  std::unique_ptr<HttpServer> http;
-  std::unique_ptr<httplib::Client> client;
-  int port = 0;
-
-  Running(const SceneBundle& bundle, AppOptions options) {
-    app = std::make_unique<AppState>(bundle, options);
-    http = std::make_unique<HttpServer>(*app);
-    port = http->start("127.0.0.1", 0);
-    client = std::make_unique<httplib::Client>("127.0.0.1", port);
-    client->set_connection_timeout(5);
-    client->set_read_timeout(60);
-    app->start();
-  }
-  ~Running() {
-    http->stop();
-    app->stop();
-  }
-  json get_json(const std::string& path, int expect = 200) {
-    auto r = client->Get(path.c_str());
-    EXPECT_TRUE(r) << path;
-    if (!r) return {};
-    EXPECT_EQ(r->status, expect) << path << ": " << r->body;
-    return json::parse(r->body);
-  }
-  json post_json(const std::string& path, const std::string& body, int expect = 200) {
-    auto r = client->Post(path.c_str(), body, "application/json");
-    EXPECT_TRUE(r) << path;
-    if (!r) return {};
-    EXPECT_EQ(r->status, expect) << path << " " << body << ": " << r->body;
-    json j = json::parse(r->body, nullptr, false);
-    EXPECT_FALSE(j.is_discarded()) << r->body;
-    if (expect >= 400) {
-      EXPECT_TRUE(j.contains("error") && !j["error"].get<std::string>().empty()) << r->body;
-    }
-    return j;
-  }
-};
-
-AppOptions no_segmentation(const std::string& out) {
-  AppOptions o;
-  o.segmentation = false;
-  o.out_dir = out;
-  o.threads = 2;
-  return o;
-}
 
 TEST(ServerApi, ServesThePageAndItsModules) {
   DemoScene d = small_demo();
@@ -217,7 +158,8 @@ TEST(ServerApi, SelectionToolsEditsUndoRedo) {
   s.post_json("/api/select/sphere", R"({"center": [0, 0, 0], "radius": -1})", 400);
   s.post_json("/api/select/box", R"({"lo": [1, 1, 1], "hi": [0, 0, 0]})", 400);
   s.post_json("/api/select/box", R"({"lo": [0, 0, 0], "hi": [1, 1, 1], "mode": "xor"})", 400);
-  s.post_json("/api/select/lasso", "{}", 404);
+  s.post_json("/api/select/magic", "{}", 404);
+  s.post_json("/api/select/lasso", "{}", 400);  // no camera, no points
   s.post_json("/api/edit/explode", "{}", 404);
   s.post_json("/api/edit/scale", "not json", 400);
   s.post_json("/api/edit/scale", "[1, 2]", 400);

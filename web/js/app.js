@@ -4,6 +4,8 @@ import * as api from './api.js';
 import { Viewer } from './viewer.js';
 import { Strip } from './strip.js';
 import { Panels } from './panels.js';
+import { SelectionTools } from './tools.js';
+import { Files } from './files.js';
 
 const $ = (id) => document.getElementById(id);
 let scene = null, viewer = null, strip = null, panels = null;
@@ -218,7 +220,6 @@ async function main() {
   document.title = `isegman · ${scene.name}`;
   $('scene-name').textContent = scene.name;
   $('out-dir').textContent = `server folder: ${scene.out_dir}`;
-  $('combine-path').title = scene.data_dir ? `read from ${scene.data_dir} (--data-dir)` : 'no data folder (--data-dir)';
   viewer = new Viewer({
     stage: $('stage'), frame: $('frame'), img: $('view-img'), canvas: $('view-marks'), caption: $('view-caption'), scene,
     onClick: click, onError: showError,
@@ -226,6 +227,9 @@ async function main() {
   });
   strip = new Strip($('strip'), (cam) => { $('camera-select').value = String(cam); viewer.setCamera(cam); });
   panels = new Panels({ api, run, runJob, scene, onClickWalked: clickWalked });
+  new SelectionTools({ api, run, scene, frame: $('frame'), bar: $('tool-bar'), card: $('card-seltools'),
+    target: () => viewer.shown && viewer.shown.target, mode: () => panels.selMode });
+  new Files({ api, run, scene, transform: () => panels.transform() });
   const step = populateCameras();
   bindKeys(step);
   viewer.fit();

@@ -52,14 +52,7 @@ export class Panels {
     $('btn-copy').addEventListener('click', () => this.edit('copy', this.transform()));
     $('btn-move').addEventListener('click', () => this.edit('transform', this.transform()));
     $('btn-extract').addEventListener('click', () => this.edit('extract'));
-    $('btn-combine').addEventListener('click', () => this.edit('combine', { path: $('combine-path').value.trim(), ...this.transform() }));
 
-    $('btn-download-ply').addEventListener('click', () => this.download('ply'));
-    $('btn-download-splat').addEventListener('click', () => this.download('splat'));
-    $('btn-save').addEventListener('click', () => run(async () => {
-      const r = await api.post('/api/export', { path: $('export-path').value.trim() });
-      return `saved ${r.gaussians.toLocaleString()} Gaussians to ${r.path}` + (r.notes.length ? ` (${r.notes.join('; ')})` : '');
-    }));
     $('scale-out').textContent = `×${scaleFactor().toFixed(2)}`;
   }
 
@@ -115,13 +108,6 @@ export class Panels {
       if (top < list.scrollTop) list.scrollTop = top;
       else if (bottom > list.scrollTop + list.clientHeight) list.scrollTop = bottom - list.clientHeight;
     }
-  }
-
-  download(format) {
-    const a = document.createElement('a');
-    a.href = `/api/export?format=${format}`;
-    a.download = `${this.scene.name || 'scene'}-edited.${format}`;
-    document.body.append(a); a.click(); a.remove();
   }
 
   // Enables the controls that make sense in the current state.
