@@ -4,9 +4,11 @@ import * as api from './api.js';
 import { Viewer } from './viewer.js';
 import { Strip } from './strip.js';
 import { Panels } from './panels.js';
+import { bindDisplay } from './display_controls.js';
+import { initLayout } from './layout.js';
 
 const $ = (id) => document.getElementById(id);
-let scene = null, viewer = null, strip = null, panels = null;
+let scene = null, viewer = null, strip = null, panels = null, display = null;
 let status = null, lastRevision = -1, lastLogSeq = 0, pollTimer = null;
 let marks = [], redoMarks = [];
 let toastTimer = null;
@@ -123,9 +125,10 @@ function render(s) {
 
   strip.update(seg, viewer.free ? -1 : viewer.cameraIndex);
   panels.update(s);
+  display.update(s);
   if (ed.revision !== lastRevision) {
     lastRevision = ed.revision;
-    viewer.render();
+    viewer.refresh();  // the WebGL view's selection mask (and splats after an edit), or a server render
   }
   const log = $('log');
   for (const e of [...s.log].reverse()) {
@@ -166,6 +169,7 @@ function populateCameras() {
   $('btn-prev').addEventListener('click', () => step(-1));
   $('btn-next').addEventListener('click', () => step(1));
   $('btn-orbit').addEventListener('click', () => viewer.setFree(!viewer.free));
+  $('btn-fly').addEventListener('click', () => viewer.setFly(!viewer.fly));
   $('btn-hd').addEventListener('click', () => viewer.render('full'));
   $('btn-nearest').addEventListener('click', nearest);
   return step;
@@ -194,6 +198,7 @@ function bindKeys(step) {
     else if (k === 'ArrowRight') step(1);
     else if (k === 'o' || k === 'O') viewer.setFree(!viewer.free);
     else if (k === 'n' || k === 'N') nearest();
+    else if (k === 'f' || k === 'F') viewer.setFly(!viewer.fly);
     else if (k === 'h' || k === 'H') viewer.render('full');
     else if (k === 'Delete' || k === 'Backspace') { if (status && status.edit.selected > 0) panels.edit('remove'); }
     else if (k === 'i' || k === 'I') panels.select('invert');
@@ -220,12 +225,17 @@ async function main() {
   $('out-dir').textContent = `server folder: ${scene.out_dir}`;
   $('combine-path').title = scene.data_dir ? `read from ${scene.data_dir} (--data-dir)` : 'no data folder (--data-dir)';
   viewer = new Viewer({
-    stage: $('stage'), frame: $('frame'), img: $('view-img'), canvas: $('view-marks'), caption: $('view-caption'), scene,
+    stage: $('stage'), frame: $('frame'), img: $('view-img'), glCanvas: $('view-gl'), canvas: $('view-marks'), caption: $('view-caption'), scene,
     onClick: click, onError: showError,
-    onModeChange: () => { $('btn-orbit').classList.toggle('on', viewer.free); $('btn-nearest').disabled = !viewer.free; if (status) strip.update(status.segmentation, viewer.free ? -1 : viewer.cameraIndex); },
+    onModeChange: () => {
+      $('btn-orbit').classList.toggle('on', viewer.free); $('btn-fly').classList.toggle('on', viewer.fly);
+      $('btn-nearest').disabled = !viewer.free; if (status) strip.update(status.segmentation, viewer.free ? -1 : viewer.cameraIndex);
+    },
   });
   strip = new Strip($('strip'), (cam) => { $('camera-select').value = String(cam); viewer.setCamera(cam); });
   panels = new Panels({ api, run, runJob, scene, onClickWalked: clickWalked });
+  display = bindDisplay({ api, run, viewer });
+  initLayout();
   const step = populateCameras();
   bindKeys(step);
   viewer.fit();
