@@ -10,6 +10,7 @@ let depths = null, keys = null, candidates = null;
 const counts = new Uint32Array(65536), starts = new Uint32Array(65536);
 
 function sort({ rot, t, tanX, tanY, near, limit, id }) {
+  const t0 = performance.now();
   const n = Math.min(limit, importance.length);
   const [r00, r01, r02, r10, r11, r12, r20, r21, r22] = rot;
   const lx = 1.3 * tanX, ly = 1.3 * tanY;
@@ -38,7 +39,7 @@ function sort({ rot, t, tanX, tanY, near, limit, id }) {
   for (let b = 1; b < 65536; ++b) starts[b] = starts[b - 1] + counts[b - 1];
   const order = new Uint32Array(m);
   for (let k = 0; k < m; ++k) order[starts[keys[k]]++] = candidates[k];
-  postMessage({ order, id, drawn: m, considered: n }, [order.buffer]);
+  postMessage({ order, id, drawn: m, considered: n, ms: performance.now() - t0 }, [order.buffer]);
 }
 
 onmessage = (e) => {

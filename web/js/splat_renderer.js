@@ -7,18 +7,28 @@
 //
 // Data: /api/splats (src/server/scene_binary.h) becomes a RGBA32UI texture, three texels
 // per splat (centre + packed colour, covariance xx xy xz yy, yz zz); /api/selection/mask
-// a R8UI texture (bit 0 selected, bit 1 hidden). Instances are quads, one per sorted index.
+// a R8UI texture (bit 0 selected, bit 1 hidden); the sorted indices a R32UI texture.
 const ROW = 1024;  // splats per texture row (3 texels each)
 const NEAR = 0.2;  // the rasteriser's near plane
+// While moving, quality steps down until a frame takes under ~50 ms (SwiftShader, the
+// software WebGL of a machine without GPU, draws all of fern at 960x540 in ~0.8 s):
+// [resolution divisor, share of the splats drawn, most important first].
+const LADDER = [[1, 1], [1, 1 / 2], [1.5, 1 / 2], [2, 1 / 2], [2, 1 / 4], [3, 1 / 4], [3, 1 / 8], [4, 1 / 8], [4, 1 / 16], [6, 1 / 16]];
 
 const VS = `#version 300 es
 precision highp float; precision highp int; precision highp usampler2D;
-uniform usampler2D u_splats; uniform usampler2D u_mask;
+uniform usampler2D u_splats; uniform usampler2D u_mask; uniform usampler2D u_order;
 uniform mat3 u_R; uniform vec3 u_t; uniform vec2 u_focal; uniform vec2 u_size; uniform vec2 u_tan;
 uniform float u_tint;
-in vec2 a_corner; in uint a_index;
 out vec4 v_color; out vec2 v_pos;
+// Two triangles per splat from gl_VertexID, no attributes (instancing is ~3x slower on
+// SwiftShader, which draws instances one by one; indexed corners and point sprites were
+// no faster); the splat is the sorted order's entry gl_VertexID / 6.
+const vec2 CORNERS[6] = vec2[6](vec2(-1, -1), vec2(1, -1), vec2(-1, 1), vec2(-1, 1), vec2(1, -1), vec2(1, 1));
 void main() {
+  int slot = gl_VertexID / 6;
+  vec2 a_corner = CORNERS[gl_VertexID % 6];
+  uint a_index = texelFetch(u_order, ivec2(slot % 2048, slot / 2048), 0).r;
   ivec2 at = ivec2(int(a_index % ${ROW}u) * 3, int(a_index / ${ROW}u));
   uvec4 A = texelFetch(u_splats, at, 0), B = texelFetch(u_splats, at + ivec2(1, 0), 0),
         C = texelFetch(u_splats, at + ivec2(2, 0), 0);
@@ -98,31 +108,19 @@ export class SplatRenderer {
   constructor(canvas, gl, background) {
     Object.assign(this, { canvas, gl, background });
     this.count = 0; this.drawCount = 0; this.camera = null; this.tint = 0.5;
-    this.moving = false; this.budget = 0; this.fingerprint = null; this.maskRevision = -1;
+    this.moving = false; this.level = 4; this.frameMs = 0; this.fingerprint = null; this.maskRevision = -1;
     this.frames = 0; this.lastFrame = 0; this.dirty = false; this.onDraw = null;
+    this.subsetWhileMoving = true;
     const p = gl.createProgram();
     gl.attachShader(p, compile(gl, gl.VERTEX_SHADER, VS));
     gl.attachShader(p, compile(gl, gl.FRAGMENT_SHADER, FS));
     gl.linkProgram(p);
     if (!gl.getProgramParameter(p, gl.LINK_STATUS)) throw new Error(`splat program: ${gl.getProgramInfoLog(p)}`);
     this.program = p;
-    this.loc = Object.fromEntries(['u_splats', 'u_mask', 'u_R', 'u_t', 'u_focal', 'u_size', 'u_tan', 'u_tint']
+    this.loc = Object.fromEntries(['u_splats', 'u_mask', 'u_order', 'u_R', 'u_t', 'u_focal', 'u_size', 'u_tan', 'u_tint']
       .map((n) => [n, gl.getUniformLocation(p, n)]));
-    this.vao = gl.createVertexArray();
-    gl.bindVertexArray(this.vao);
-    const corners = gl.createBuffer();
-    gl.bindBuffer(gl.ARRAY_BUFFER, corners);
-    gl.bufferData(gl.ARRAY_BUFFER, new Float32Array([-1, -1, 1, -1, -1, 1, 1, 1]), gl.STATIC_DRAW);
-    const aCorner = gl.getAttribLocation(p, 'a_corner');
-    gl.enableVertexAttribArray(aCorner);
-    gl.vertexAttribPointer(aCorner, 2, gl.FLOAT, false, 0, 0);
-    this.indexBuffer = gl.createBuffer();
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.indexBuffer);
-    const aIndex = gl.getAttribLocation(p, 'a_index');
-    gl.enableVertexAttribArray(aIndex);
-    gl.vertexAttribIPointer(aIndex, 1, gl.UNSIGNED_INT, 0, 0);
-    gl.vertexAttribDivisor(aIndex, 1);
-    gl.bindVertexArray(null);
+    this.vao = gl.createVertexArray();  // no attributes: everything comes from textures
+    this.orderTex = gl.createTexture();
     this.splatTex = gl.createTexture();
     this.maskTex = gl.createTexture();
     this.worker = new Worker('/js/sort_worker.js');
@@ -157,7 +155,6 @@ export class SplatRenderer {
     gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32UI, ROW * 3, rows, 0, gl.RGBA_INTEGER, gl.UNSIGNED_INT, texels);
     for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
     this.count = n; this.drawCount = 0; this.fingerprint = h.a;
-    this.budget = this.budget || Math.min(n, 40000);
     this.setMaskBytes(new Uint8Array(n), -1);  // nothing selected until the mask arrives
     this.worker.postMessage({ type: 'init', positions, importance }, [positions.buffer, importance.buffer]);
     this.requestSort();
@@ -196,19 +193,21 @@ export class SplatRenderer {
   // `camera`: {R (row-major world-to-camera), t, fx, fy, width, height}.
   setCamera(camera) {
     this.camera = camera;
-    if (this.canvas.width !== camera.width || this.canvas.height !== camera.height) {
-      this.canvas.width = camera.width; this.canvas.height = camera.height;
-    }
     this.requestSort();
     this.redraw();
   }
 
-  // While moving only the `budget` most important splats are drawn (adapted to keep the
-  // frame rate up); when still, all of them.
+  // The quality step in use: full when still (or with subsetWhileMoving off).
+  step() { return this.moving && this.subsetWhileMoving ? LADDER[this.level] : LADDER[0]; }
+
+  // While moving, a lower resolution and the most important splats only (the step the last
+  // movement settled on); when still, everything at full resolution.
   setMoving(on) {
     if (on === this.moving) return;
     this.moving = on;
+    this.frameMs = 0;
     this.requestSort();
+    this.redraw();
   }
 
   requestSort() {
@@ -217,14 +216,18 @@ export class SplatRenderer {
     this.sortBusy = true; this.sortPending = false;
     const c = this.camera;
     this.worker.postMessage({ type: 'sort', rot: c.R, t: c.t, tanX: c.width / (2 * c.fx), tanY: c.height / (2 * c.fy),
-      near: NEAR, limit: this.moving ? Math.round(this.budget) : this.count, id: ++this.sortId });
+      near: NEAR, limit: Math.max(1, Math.round(this.count * this.step()[1])), id: ++this.sortId });
   }
 
-  sorted({ order, drawn }) {
+  sorted({ order, drawn, ms }) {
     this.sortBusy = false;
-    const gl = this.gl;
-    gl.bindBuffer(gl.ARRAY_BUFFER, this.indexBuffer);
-    gl.bufferData(gl.ARRAY_BUFFER, order, gl.DYNAMIC_DRAW);
+    this.sortMs = ms;
+    const gl = this.gl, rows = Math.max(1, Math.ceil(order.length / 2048));
+    const data = new Uint32Array(2048 * rows);
+    data.set(order);
+    gl.bindTexture(gl.TEXTURE_2D, this.orderTex);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.R32UI, 2048, rows, 0, gl.RED_INTEGER, gl.UNSIGNED_INT, data);
+    for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
     this.drawCount = drawn;
     this.redraw();
     if (this.sortPending) this.requestSort();
@@ -239,11 +242,14 @@ export class SplatRenderer {
   frame(now) {
     this.dirty = false;
     this.draw();
-    // Adapt the moving budget to ~25 frames/s.
-    if (this.moving && this.lastFrame) {
-      const dt = now - this.lastFrame;
-      if (dt > 45) this.budget = Math.max(this.count / 50, this.budget * 0.85);
-      else if (dt < 34) this.budget = Math.min(this.count, this.budget * 1.08);
+    // Adapt the moving step to 20-33 frames/s (a smoothed frame time, one step at a time).
+    if (this.moving && this.subsetWhileMoving && this.lastFrame) {
+      const dt = Math.min(1000, now - this.lastFrame);
+      this.frameMs = this.frameMs ? 0.7 * this.frameMs + 0.3 * dt : dt;
+      const was = this.level;
+      if (this.frameMs > 50 && this.level < LADDER.length - 1) this.level++;
+      else if (this.frameMs < 30 && this.level > 0) this.level--;
+      if (this.level !== was) { this.frameMs = 0; this.requestSort(); }
     }
     this.lastFrame = now;
     this.frames++;
@@ -251,7 +257,14 @@ export class SplatRenderer {
   }
 
   draw() {
-    const gl = this.gl, c = this.camera, bg = this.background;
+    const gl = this.gl, bg = this.background;
+    let c = this.camera;
+    if (c) {
+      const div = this.step()[0];
+      const w = Math.max(16, Math.round(c.width / div)), h = Math.max(16, Math.round(c.height / div));
+      c = { ...c, width: w, height: h, fx: (c.fx * w) / c.width, fy: (c.fy * h) / c.height };
+      if (this.canvas.width !== w || this.canvas.height !== h) { this.canvas.width = w; this.canvas.height = h; }
+    }
     gl.viewport(0, 0, this.canvas.width, this.canvas.height);
     gl.clearColor(bg[0], bg[1], bg[2], 1);
     gl.clear(gl.COLOR_BUFFER_BIT);
@@ -261,8 +274,9 @@ export class SplatRenderer {
     gl.blendFunc(gl.ONE, gl.ONE_MINUS_SRC_ALPHA);
     gl.activeTexture(gl.TEXTURE0); gl.bindTexture(gl.TEXTURE_2D, this.splatTex);
     gl.activeTexture(gl.TEXTURE1); gl.bindTexture(gl.TEXTURE_2D, this.maskTex);
+    gl.activeTexture(gl.TEXTURE2); gl.bindTexture(gl.TEXTURE_2D, this.orderTex);
     const L = this.loc;
-    gl.uniform1i(L.u_splats, 0); gl.uniform1i(L.u_mask, 1);
+    gl.uniform1i(L.u_splats, 0); gl.uniform1i(L.u_mask, 1); gl.uniform1i(L.u_order, 2);
     gl.uniformMatrix3fv(L.u_R, true, c.R);
     gl.uniform3fv(L.u_t, c.t);
     gl.uniform2f(L.u_focal, c.fx, c.fy);
@@ -270,7 +284,7 @@ export class SplatRenderer {
     gl.uniform2f(L.u_tan, c.width / (2 * c.fx), c.height / (2 * c.fy));
     gl.uniform1f(L.u_tint, this.tint);
     gl.bindVertexArray(this.vao);
-    gl.drawArraysInstanced(gl.TRIANGLE_STRIP, 0, 4, this.drawCount);
+    gl.drawArrays(gl.TRIANGLES, 0, 6 * this.drawCount);
     gl.bindVertexArray(null);
   }
 

@@ -36,6 +36,8 @@ export class Viewer {
       onError?.(`WebGL renderer unavailable, using server renders: ${e.message || e}`);
     }
     document.body.dataset.renderer = this.gl ? 'webgl' : 'server';
+    // ?full: draw every splat while moving too (for measuring, tests/e2e/bench_orbit.mjs).
+    if (this.gl && new URLSearchParams(location.search).has('full')) this.gl.subsetWhileMoving = false;
     if (this.gl) {
       this.gl.onDraw = () => this.glDrawn();
       this.gl.load().then(() => this.gl.loadMask()).catch((e) => { onError?.(`splats: ${e.message || e}`); });
@@ -173,7 +175,7 @@ export class Viewer {
     this.frame.dataset.rendered = String(g.frames);
     if (!this.usesGl()) return;
     this.caption.textContent = `free camera · WebGL · ${g.drawCount.toLocaleString()} of ${g.count.toLocaleString()} splats` +
-      (g.moving ? ' (moving: most visible first)' : '') + (this.fly ? ' · fly (WASD/QE)' : '');
+      ` · ${g.canvas.width}×${g.canvas.height}` + (g.moving ? ' (moving: reduced)' : '') + (this.fly ? ' · fly (WASD/QE)' : '');
   }
 
   // Dragging or flying: the WebGL view draws a subset; server renders a low resolution.
@@ -205,6 +207,7 @@ export class Viewer {
         this.img.dataset.key = r.key;
         this.frame.dataset.key = r.key;
         this.img.dataset.rendered = String(Date.now());
+        this.img.dataset.loads = String(Number(this.img.dataset.loads || 0) + 1);
         const c = this.free ? null : this.scene.cameras[this.cameraIndex];
         this.caption.textContent = this.free
           ? `free camera · server render ${this.img.naturalWidth}×${this.img.naturalHeight}`
@@ -222,11 +225,16 @@ export class Viewer {
   setMarks(marks) { this.marks = marks; this.drawMarks(); }
 
   drawMarks() {
+    const key = this.shown ? this.shown.key : null;
+    const shown = this.marks.filter((m) => m.key === key);
+    // Nothing to draw and nothing drawn: leave the overlay alone (repainting it every
+    // frame of a drag costs software compositing time).
+    const sig = `${this.canvas.width}x${this.canvas.height}:${JSON.stringify(shown)}`;
+    if (!shown.length && this.marksEmpty === sig) return;
+    this.marksEmpty = shown.length ? null : sig;
     const g = this.canvas.getContext('2d');
     g.clearRect(0, 0, this.canvas.width, this.canvas.height);
-    const key = this.shown ? this.shown.key : null;
-    for (const m of this.marks) {
-      if (m.key !== key) continue;
+    for (const m of shown) {
       const x = m.x * this.canvas.width, y = m.y * this.canvas.height;
       g.beginPath(); g.arc(x, y, 7, 0, 2 * Math.PI);
       g.fillStyle = m.label ? 'rgba(47,191,113,0.95)' : 'rgba(229,72,77,0.95)'; g.fill();
