@@ -27,7 +27,10 @@ std::string scene_name(const SceneBundle& b) {
     return n.empty() || n == "scene" || n == "scenes" || n == "output" || n == "outputs" || n == "model" ||
            n == "point_cloud" || n == "splat" || n == "gaussians" || n == "." || n == "/";
   };
-  fs::path p = fs::absolute(fs::path(b.ply_path)).lexically_normal();
+  if (b.ply_path.empty()) return "scene";  // built in memory (the demo, tests)
+  std::error_code ec;
+  fs::path p = fs::absolute(fs::path(b.ply_path), ec).lexically_normal();
+  if (ec) p = fs::path(b.ply_path).lexically_normal();
   fs::path folder = p.parent_path();
   std::string name = p.stem().string();
   // .../<scene>/point_cloud/iteration_N/point_cloud.ply -> <scene>

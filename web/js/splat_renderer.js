@@ -124,13 +124,21 @@ export class SplatRenderer {
     this.splatTex = gl.createTexture();
     this.maskTex = gl.createTexture();
     this.worker = new Worker('/js/sort_worker.js');
-    this.sortId = 0; this.sortBusy = false; this.sortPending = false;
+    this.sortId = 0; this.sortBusy = false; this.sortPending = false; this.firstSortOfScene = 0;
     this.worker.onmessage = (e) => this.sorted(e.data);
   }
 
-  // Fetches the scene's splats when its fingerprint is not the one loaded.
-  async load(fingerprint = null) {
-    if (fingerprint && fingerprint === this.fingerprint) return;
+  // Fetches the scene's splats when its fingerprint is not the one loaded (one fetch at a
+  // time: the status poll and a display action may both ask).
+  load(fingerprint = null) {
+    if (fingerprint && fingerprint === this.fingerprint) return Promise.resolve();
+    if (this.loading && (!fingerprint || fingerprint === this.loadingFingerprint)) return this.loading;
+    this.loadingFingerprint = fingerprint;
+    this.loading = this.fetchSplats().finally(() => { this.loading = null; });
+    return this.loading;
+  }
+
+  async fetchSplats() {
     const res = await fetch('/api/splats', { cache: 'no-store' });
     if (!res.ok) throw new Error(`splats: ${res.status}`);
     const buf = await res.arrayBuffer();
@@ -157,6 +165,7 @@ export class SplatRenderer {
     this.count = n; this.drawCount = 0; this.fingerprint = h.a;
     this.setMaskBytes(new Uint8Array(n), -1);  // nothing selected until the mask arrives
     this.worker.postMessage({ type: 'init', positions, importance }, [positions.buffer, importance.buffer]);
+    this.firstSortOfScene = this.sortId + 1;  // earlier answers index the previous scene
     this.requestSort();
   }
 
@@ -219,15 +228,20 @@ export class SplatRenderer {
       near: NEAR, limit: Math.max(1, Math.round(this.count * this.step()[1])), id: ++this.sortId });
   }
 
-  sorted({ order, drawn, ms }) {
+  sorted({ order, drawn, ms, id }) {
     this.sortBusy = false;
+    if (id < this.firstSortOfScene) { this.requestSort(); return; }
     this.sortMs = ms;
-    const gl = this.gl, rows = Math.max(1, Math.ceil(order.length / 2048));
-    const data = new Uint32Array(2048 * rows);
-    data.set(order);
+    const gl = this.gl, rows = Math.max(1, Math.ceil(this.count / 2048));
     gl.bindTexture(gl.TEXTURE_2D, this.orderTex);
-    gl.texImage2D(gl.TEXTURE_2D, 0, gl.R32UI, 2048, rows, 0, gl.RED_INTEGER, gl.UNSIGNED_INT, data);
-    for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
+    if (this.orderRows !== rows) {  // sized for every splat once per scene, then updated in place
+      gl.texImage2D(gl.TEXTURE_2D, 0, gl.R32UI, 2048, rows, 0, gl.RED_INTEGER, gl.UNSIGNED_INT, null);
+      for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
+      this.orderRows = rows;
+    }
+    const full = Math.floor(order.length / 2048), rest = order.length - 2048 * full;
+    if (full) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, 2048, full, gl.RED_INTEGER, gl.UNSIGNED_INT, order, 0);
+    if (rest) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, full, rest, 1, gl.RED_INTEGER, gl.UNSIGNED_INT, order, 2048 * full);
     this.drawCount = drawn;
     this.redraw();
     if (this.sortPending) this.requestSort();
@@ -236,6 +250,7 @@ export class SplatRenderer {
   redraw() {
     if (this.dirty) return;
     this.dirty = true;
+    this.requestedAt = performance.now();
     requestAnimationFrame((t) => this.frame(t));
   }
 
@@ -243,7 +258,9 @@ export class SplatRenderer {
     this.dirty = false;
     this.draw();
     // Adapt the moving step to 20-33 frames/s (a smoothed frame time, one step at a time).
-    if (this.moving && this.subsetWhileMoving && this.lastFrame) {
+    // Only frames asked for right after the previous one measure the drawing speed (a
+    // pause in the movement is not a slow frame).
+    if (this.moving && this.subsetWhileMoving && this.lastFrame && this.requestedAt - this.lastFrame < 10) {
       const dt = Math.min(1000, now - this.lastFrame);
       this.frameMs = this.frameMs ? 0.7 * this.frameMs + 0.3 * dt : dt;
       const was = this.level;
@@ -251,7 +268,7 @@ export class SplatRenderer {
       else if (this.frameMs < 30 && this.level > 0) this.level--;
       if (this.level !== was) { this.frameMs = 0; this.requestSort(); }
     }
-    this.lastFrame = now;
+    this.lastFrame = performance.now();
     this.frames++;
     this.onDraw?.();
   }
