@@ -11,40 +11,13 @@
 #include "server/input_paths.h"
 #include "server/output_paths.h"
 #include "server/scene_binary.h"
+#include "server/scene_name.h"
 
 namespace fs = std::filesystem;
 
 namespace isegman::server {
 
 namespace {
-
-// The page's name for the scene: the trainer's output folder
-// (.../<name>/point_cloud/iteration_N/point_cloud.ply) or the file's stem; a generic name
-// ("scene", "output", "point_cloud", ...) gives way to the folder above it, so the
-// fixtures' fern/scene/ is "fern", not "scene".
-std::string scene_name(const SceneBundle& b) {
-  auto generic = [](const std::string& n) {
-    return n.empty() || n == "scene" || n == "scenes" || n == "output" || n == "outputs" || n == "model" ||
-           n == "point_cloud" || n == "splat" || n == "gaussians" || n == "." || n == "/";
-  };
-  if (b.ply_path.empty()) return "scene";  // built in memory (the demo, tests)
-  std::error_code ec;
-  fs::path p = fs::absolute(fs::path(b.ply_path), ec).lexically_normal();
-  if (ec) p = fs::path(b.ply_path).lexically_normal();
-  fs::path folder = p.parent_path();
-  std::string name = p.stem().string();
-  // .../<scene>/point_cloud/iteration_N/point_cloud.ply -> <scene>
-  if (p.filename() == "point_cloud.ply" && p.parent_path().parent_path().filename() == "point_cloud") {
-    folder = p.parent_path().parent_path().parent_path();
-    name = folder.filename().string();
-    folder = folder.parent_path();
-  }
-  while (generic(name) && folder.has_filename()) {
-    name = folder.filename().string();
-    folder = folder.parent_path();
-  }
-  return generic(name) ? "scene" : name;
-}
 
 SegmentationOptions segmentation_options(const AppOptions& o) {
   SegmentationOptions s;
@@ -88,7 +61,7 @@ void AppState::start() { segmentation_.start(); }
 
 SceneInfo AppState::scene_info() const {
   SceneInfo s;
-  s.name = scene_name(bundle_);
+  s.name = scene_name(bundle_.ply_path);
   s.ply = bundle_.ply_path;
   const EditStatus e = scene_.status();
   s.gaussians = e.gaussians;
