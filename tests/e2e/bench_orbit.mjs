@@ -8,6 +8,7 @@
 // ISEGMAN_BIN (default build/isegman) names the binary.
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
+import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
@@ -56,7 +57,7 @@ async function measure(query) {
   while (Date.now() - t0 < seconds * 1000) {
     const a = (Date.now() - t0) / 1000 * 2;
     await page.mouse.move(cx + 150 * Math.sin(a), cy + 40 * Math.sin(2 * a));
-    if (++k % 40 === 0) caption.push(await page.textContent('#view-caption'));
+    if (++k % 10 === 0) caption.push(await page.textContent('#view-caption'));
   }
   const f1 = await count(), t1 = Date.now();
   await page.mouse.up();
@@ -70,11 +71,12 @@ async function measure(query) {
 
 try {
   const rows = [['WebGL, subset while moving', ''], ['WebGL, every splat', '?full'], ['server renders (fallback)', '?nogl']];
-  console.log(`scene ${scene}, ${seconds} s of orbiting each`);
+  const load = () => os.loadavg().map((v) => v.toFixed(1)).join(' ');
+  console.log(`scene ${scene}, ${seconds} s of orbiting each; CPU ${os.cpus()[0].model} x${os.cpus().length}, load average ${load()}`);
   for (const [name, q] of rows) {
     const r = await measure(q);
     console.log(`${name.padEnd(28)} ${r.fps.toFixed(1).padStart(6)} frames/s  view ${r.size}` +
-      r.drawn);
+      r.drawn + `  (load ${load()})`);
   }
 } finally {
   await browser.close();

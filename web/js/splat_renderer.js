@@ -260,7 +260,7 @@ export class SplatRenderer {
     // Adapt the moving step to 20-33 frames/s (a smoothed frame time, one step at a time).
     // Only frames asked for right after the previous one measure the drawing speed (a
     // pause in the movement is not a slow frame).
-    if (this.moving && this.subsetWhileMoving && this.lastFrame && this.requestedAt - this.lastFrame < 10) {
+    if (this.moving && this.subsetWhileMoving && this.lastFrame && this.requestedAt - this.lastFrame < 40) {
       const dt = Math.min(1000, now - this.lastFrame);
       this.frameMs = this.frameMs ? 0.7 * this.frameMs + 0.3 * dt : dt;
       const was = this.level;
