@@ -208,6 +208,17 @@ async function focusChecks(page, fx) {
   await page.waitForSelector('body[data-focus]', { timeout: 20000 });
   const p2 = (await page.getAttribute('body', 'data-focus')).split(',').map(Number);
   check(inside(p2), `after orbiting, the object is still at the centre of the view (${p2.map((v) => v.toFixed(2))})`);
+  // Fly mode: F, then holding W moves the camera forward.
+  await page.keyboard.press('f');
+  await page.waitForSelector('#btn-fly.on');
+  const key0 = await page.getAttribute('#frame', 'data-key');
+  await page.keyboard.down('w');
+  await page.waitForTimeout(400);
+  await page.keyboard.up('w');
+  await page.waitForTimeout(300);
+  check(await page.getAttribute('#frame', 'data-key') !== key0, 'fly mode: holding W moves the free camera');
+  await page.keyboard.press('f');
+  await page.waitForSelector('#btn-fly:not(.on)');
 }
 
 let page = null;
