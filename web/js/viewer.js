@@ -330,19 +330,23 @@ export class Viewer {
   }
 
   // Fly mode: W/S forward/back, A/D left/right, Q/E down/up (Shift: faster), while held.
+  // Movement follows the time held, not the frames drawn (a slow frame does not slow it).
   bindFlyKeys() {
     const held = new Set();
     const dirs = { w: [1, 0, 0], s: [-1, 0, 0], a: [0, -1, 0], d: [0, 1, 0], q: [0, 0, -1], e: [0, 0, 1] };
-    let last = 0, fast = false;
-    const step = (t) => {
-      if (!held.size) { last = 0; this.moving(false); return; }
-      const dt = last ? Math.min(0.1, (t - last) / 1000) : 0;
-      last = t;
+    let last = 0, fast = false, looping = false;
+    const advance = () => {
+      const now = performance.now();
+      const dt = Math.min(0.25, (now - last) / 1000);
+      last = now;
       const v = [0, 0, 0];
       for (const k of held) dirs[k].forEach((d, i) => { v[i] += d; });
       const s = this.flySpeed * dt * (fast ? 3 : 1);
-      this.orbit.move(v[0] * s, v[1] * s, v[2] * s);
-      this.render('fast');
+      if (s > 0 && v.some((x) => x !== 0)) { this.orbit.move(v[0] * s, v[1] * s, v[2] * s); this.render('fast'); }
+    };
+    const step = () => {
+      if (!held.size) { looping = false; this.moving(false); return; }
+      advance();
       requestAnimationFrame(step);
     };
     document.addEventListener('keydown', (e) => {
@@ -352,10 +356,18 @@ export class Viewer {
       e.preventDefault();
       e.stopImmediatePropagation();
       fast = e.shiftKey;
-      if (!held.size) { this.setFree(true); this.moving(true); requestAnimationFrame(step); }
+      if (held.has(k)) return;  // key repeat
+      if (held.size) advance(); else last = performance.now();
       held.add(k);
+      if (!looping) { looping = true; this.setFree(true); this.moving(true); requestAnimationFrame(step); }
     }, { capture: true });
-    document.addEventListener('keyup', (e) => { held.delete(e.key.toLowerCase()); fast = e.shiftKey; });
+    document.addEventListener('keyup', (e) => {
+      const k = e.key.toLowerCase();
+      if (!held.has(k)) return;
+      advance();
+      held.delete(k);
+      fast = e.shiftKey;
+    });
     window.addEventListener('blur', () => held.clear());
   }
 }
