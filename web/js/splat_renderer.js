@@ -251,17 +251,17 @@ export class SplatRenderer {
     if (this.dirty) return;
     this.dirty = true;
     this.requestedAt = performance.now();
-    requestAnimationFrame((t) => this.frame(t));
+    requestAnimationFrame(() => this.frame());
   }
 
-  frame(now) {
+  frame() {
     this.dirty = false;
     this.draw();
     // Adapt the moving step to 20-33 frames/s (a smoothed frame time, one step at a time).
-    // Only frames asked for right after the previous one measure the drawing speed (a
-    // pause in the movement is not a slow frame).
-    if (this.moving && this.subsetWhileMoving && this.lastFrame && this.requestedAt - this.lastFrame < 40) {
-      const dt = Math.min(1000, now - this.lastFrame);
+    // Frames asked for soon after the previous one measure the drawing speed (a pause in
+    // the movement is not a slow frame).
+    const dt = performance.now() - this.lastFrame;
+    if (this.moving && this.subsetWhileMoving && this.lastFrame && this.requestedAt - this.lastFrame < 100 && dt < 1500) {
       this.frameMs = this.frameMs ? 0.7 * this.frameMs + 0.3 * dt : dt;
       const was = this.level;
       if (this.frameMs > 50 && this.level < LADDER.length - 1) this.level++;
