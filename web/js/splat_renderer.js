@@ -108,7 +108,7 @@ export class SplatRenderer {
   constructor(canvas, gl, background) {
     Object.assign(this, { canvas, gl, background });
     this.count = 0; this.drawCount = 0; this.camera = null; this.tint = 0.5;
-    this.moving = false; this.level = 4; this.frameMs = 0; this.fingerprint = null; this.maskRevision = -1;
+    this.moving = false; this.level = 4; this.window = null; this.moves = 0; this.fingerprint = null; this.maskRevision = -1;
     this.frames = 0; this.lastFrame = 0; this.dirty = false; this.onDraw = null;
     this.subsetWhileMoving = true;
     const p = gl.createProgram();
@@ -202,6 +202,7 @@ export class SplatRenderer {
   // `camera`: {R (row-major world-to-camera), t, fx, fy, width, height}.
   setCamera(camera) {
     this.camera = camera;
+    this.moves = (this.moves || 0) + 1;
     this.requestSort();
     this.redraw();
   }
@@ -214,7 +215,7 @@ export class SplatRenderer {
   setMoving(on) {
     if (on === this.moving) return;
     this.moving = on;
-    this.frameMs = 0;
+    this.window = null;
     this.requestSort();
     this.redraw();
   }
@@ -250,27 +251,35 @@ export class SplatRenderer {
   redraw() {
     if (this.dirty) return;
     this.dirty = true;
-    this.requestedAt = performance.now();
     requestAnimationFrame(() => this.frame());
   }
 
   frame() {
     this.dirty = false;
     this.draw();
-    // Adapt the moving step to 20-33 frames/s (a smoothed frame time, one step at a time).
-    // Frames asked for soon after the previous one measure the drawing speed (a pause in
-    // the movement is not a slow frame).
-    const dt = performance.now() - this.lastFrame;
-    if (this.moving && this.subsetWhileMoving && this.lastFrame && this.requestedAt - this.lastFrame < 100 && dt < 1500) {
-      this.frameMs = this.frameMs ? 0.7 * this.frameMs + 0.3 * dt : dt;
-      const was = this.level;
-      if (this.frameMs > 50 && this.level < LADDER.length - 1) this.level++;
-      else if (this.frameMs < 30 && this.level > 0) this.level--;
-      if (this.level !== was) { this.frameMs = 0; this.requestSort(); }
-    }
+    this.adapt();
     this.lastFrame = performance.now();
     this.frames++;
     this.onDraw?.();
+  }
+
+  // While moving, every ~0.4 s: when the camera moved more often than frames were drawn
+  // (drawing is the bottleneck) and under 20 frames/s, one step down the ladder; when
+  // drawing kept up and at 25 frames/s or more, one step up.
+  adapt() {
+    const now = performance.now();
+    if (!this.moving || !this.subsetWhileMoving) { this.window = null; return; }
+    if (!this.window) { this.window = { t0: now, frames: 0, moves: this.moves }; return; }
+    const w = this.window;
+    w.frames++;
+    const elapsed = now - w.t0;
+    if (elapsed < 400) return;
+    const fps = (1000 * w.frames) / elapsed, moves = this.moves - w.moves;
+    const was = this.level;
+    if (moves > 1.2 * w.frames && fps < 20 && this.level < LADDER.length - 1) this.level++;
+    else if (moves <= 1.2 * w.frames && fps >= 25 && this.level > 0) this.level--;
+    if (this.level !== was) this.requestSort();
+    this.window = { t0: now, frames: 0, moves: this.moves };
   }
 
   draw() {

@@ -174,8 +174,9 @@ export class Viewer {
     const g = this.gl;
     this.frame.dataset.rendered = String(g.frames);
     if (!this.usesGl()) return;
-    this.caption.textContent = `free camera · WebGL · ${g.drawCount.toLocaleString()} of ${g.count.toLocaleString()} splats` +
+    const text = `free camera · WebGL · ${g.drawCount.toLocaleString()} of ${g.count.toLocaleString()} splats` +
       ` · ${g.canvas.width}×${g.canvas.height}` + (g.moving ? ' (moving: reduced)' : '') + (this.fly ? ' · fly (WASD/QE)' : '');
+    if (this.caption.textContent !== text) this.caption.textContent = text;  // no relayout per frame
   }
 
   // Dragging or flying: the WebGL view draws a subset; server renders a low resolution.
@@ -278,7 +279,7 @@ export class Viewer {
     el.addEventListener('contextmenu', (e) => e.preventDefault());
     el.addEventListener('dblclick', (e) => e.preventDefault());
     el.addEventListener('pointerdown', (e) => {
-      el.setPointerCapture(e.pointerId);
+      try { el.setPointerCapture(e.pointerId); } catch (_) { /* a synthetic pointer (scripts, tests) */ }
       start = { x: e.clientX, y: e.clientY, lastX: e.clientX, lastY: e.clientY, button: e.button, shift: e.shiftKey, dragged: false };
     });
     el.addEventListener('pointermove', (e) => {
