@@ -82,7 +82,7 @@ void check_params(const httplib::Request& req, std::initializer_list<const char*
 }
 
 RenderRequest parse_render(const httplib::Request& req) {
-  check_params(req, {"view", "eye", "target", "up", "fov", "width", "height", "size", "highlight", "format", "bg", "t"});
+  check_params(req, {"view", "eye", "target", "up", "fov", "width", "height", "size", "highlight", "tint", "format", "bg", "t"});
   RenderRequest r;
   const bool has_view = req.has_param("view"), has_eye = req.has_param("eye");
   if (has_view == has_eye) bad_request("give either view=K or a free camera (eye, target, up, fov, width, height)");
@@ -106,6 +106,7 @@ RenderRequest parse_render(const httplib::Request& req) {
     r.max_side = r.free ? 0 : 640;
   }
   if (req.has_param("highlight")) r.highlight = parse_flag(param(req, "highlight"), "highlight");
+  if (req.has_param("tint")) r.tint = float(parse_number(param(req, "tint"), "tint", 0, 1));
   if (req.has_param("format")) {
     const std::string f = param(req, "format");
     if (f != "jpeg" && f != "png") bad_request("format: expected jpeg or png");
@@ -174,6 +175,36 @@ void register_routes(httplib::Server& server, AppState& app) {
     const std::vector<uint8_t> bytes = app.thumbnail(parse_integer(param(req, "index"), "index", 0, 1 << 20));
     res.set_header("Cache-Control", "no-store");
     res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), "image/jpeg");
+  }));
+  // The page's WebGL renderer: the scene and the selection as binary records (scene_binary.h).
+  routes->get("/api/splats", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    check_params(req, {"v"});
+    const std::vector<uint8_t> bytes = app.splats();
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), "application/octet-stream");
+  }));
+  routes->get("/api/selection/mask", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    check_params(req, {"v"});
+    const std::vector<uint8_t> bytes = app.selection_mask();
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(reinterpret_cast<const char*>(bytes.data()), bytes.size(), "application/octet-stream");
+  }));
+  // Pick-to-focus: the surface point under x, y (pixels of the view's full-size image).
+  routes->get("/api/pick", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    if (!req.has_param("x") || !req.has_param("y")) bad_request("missing parameter 'x' or 'y'");
+    const double x = parse_number(param(req, "x"), "x", 0, 1e6), y = parse_number(param(req, "y"), "y", 0, 1e6);
+    httplib::Request view = req;
+    view.params.erase("x");
+    view.params.erase("y");
+    const PickResult p = app.pick(parse_render(view), x, y);
+    json j = {{"hit", p.hit}};
+    if (p.hit) j.update({{"point", {p.point.x, p.point.y, p.point.z}}, {"depth", p.depth}});
+    send_json(res, j);
+  }));
+  routes->post(R"(/api/display/(hide|isolate|show))", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    const std::string op = req.matches[1].str();
+    const DisplayResult r = app.display(op == "hide" ? DisplayOp::kHide : op == "isolate" ? DisplayOp::kIsolate : DisplayOp::kShowAll);
+    send_json(res, {{"label", r.label}, {"hidden", r.hidden}, {"revision", r.revision}});
   }));
   routes->get("/api/selection/bounds", guarded([&app](const httplib::Request&, httplib::Response& res) {
     send_json(res, to_json(app.selection_bounds()));

@@ -10,20 +10,14 @@
 #include "server/app_error.h"
 #include "server/input_paths.h"
 #include "server/output_paths.h"
+#include "server/scene_binary.h"
+#include "server/scene_name.h"
 
 namespace fs = std::filesystem;
 
 namespace isegman::server {
 
 namespace {
-
-std::string scene_name(const SceneBundle& b) {
-  fs::path p(b.ply_path);
-  // .../<scene>/point_cloud/iteration_N/point_cloud.ply -> <scene>
-  if (p.filename() == "point_cloud.ply" && p.parent_path().parent_path().filename() == "point_cloud")
-    return p.parent_path().parent_path().parent_path().filename().string();
-  return p.stem().string();
-}
 
 SegmentationOptions segmentation_options(const AppOptions& o) {
   SegmentationOptions s;
@@ -68,7 +62,7 @@ void AppState::start() { segmentation_.start(); }
 
 SceneInfo AppState::scene_info() const {
   SceneInfo s;
-  s.name = scene_name(bundle_);
+  s.name = scene_name(bundle_.ply_path);
   s.ply = bundle_.ply_path;
   const EditStatus e = scene_.status();
   s.gaussians = e.gaussians;
@@ -100,7 +94,7 @@ AppStatus AppState::status() const {
   return s;
 }
 
-std::vector<uint8_t> AppState::render(const RenderRequest& r) const {
+Camera AppState::camera_for(const RenderRequest& r) const {
   Camera cam;
   if (r.free) {
     cam = make_free_camera(*r.free);
@@ -115,6 +109,11 @@ std::vector<uint8_t> AppState::render(const RenderRequest& r) const {
     cam = cam.resized(std::max(1, int(std::lround(cam.width * s))), std::max(1, int(std::lround(cam.height * s))));
   }
   if (size_t(cam.width) * cam.height > size_t(4096) * 4096) invalid("size: the render would be too large");
+  return cam;
+}
+
+std::vector<uint8_t> AppState::render(const RenderRequest& r) const {
+  const Camera cam = camera_for(r);
   RenderSettings rs;
   rs.threads = options_.threads;
   rs.depth = false;
@@ -124,8 +123,45 @@ std::vector<uint8_t> AppState::render(const RenderRequest& r) const {
     rs.background[1] = float(r.background->g);
     rs.background[2] = float(r.background->b);
   }
-  const Image color = scene_.render(cam, rs, r.highlight);
+  const std::vector<bool> hidden = display_.hidden(scene_.status().gaussians);
+  const Image color = scene_.render(cam, rs, r.highlight ? r.tint : 0.f, &hidden);
   return r.png ? encode_png(color) : encode_jpeg(color, 88);
+}
+
+std::vector<uint8_t> AppState::splats() const {
+  return scene_.read([](const GaussianScene& g, const std::vector<bool>&, uint64_t, uint64_t fingerprint) {
+    return pack_splats(g, fingerprint);
+  });
+}
+
+std::vector<uint8_t> AppState::selection_mask() const {
+  return scene_.read([this](const GaussianScene& g, const std::vector<bool>& mask, uint64_t revision,
+                            uint64_t fingerprint) {
+    const std::vector<bool> hidden = display_.hidden(g.size());  // may forget flags: read it first
+    return pack_selection(mask, hidden, fingerprint, revision + display_.revision());
+  });
+}
+
+DisplayResult AppState::display(DisplayOp op) {
+  DisplayResult r = scene_.read([this, op](const GaussianScene&, const std::vector<bool>& mask, uint64_t, uint64_t) {
+    return display_.apply(op, mask);
+  });
+  log_.note(r.label);
+  return r;
+}
+
+PickResult AppState::pick(const RenderRequest& view, double x, double y) const {
+  RenderRequest full = view;
+  full.max_side = 0;  // x, y are pixels of the full-size image
+  const Camera cam = camera_for(full);
+  RenderSettings rs;
+  rs.threads = options_.threads;
+  return scene_.read([&](const GaussianScene& g, const std::vector<bool>&, uint64_t, uint64_t) {
+    std::vector<bool> hidden = display_.hidden(g.size());
+    if (hidden.empty()) return pick_surface(g, cam, x, y, rs);
+    for (size_t i = 0; i < hidden.size(); ++i) hidden[i] = !hidden[i];
+    return pick_surface(g.subset(hidden), cam, x, y, rs);
+  });
 }
 
 EditResult AppState::select(const SelectRequest& request) {

@@ -19,10 +19,12 @@
 #include "segment/session.h"
 #include "segment/views.h"
 #include "server/activity_log.h"
+#include "server/display_state.h"
 #include "server/edit_state.h"
 #include "server/free_camera.h"
 #include "server/jobs.h"
 #include "server/scene_files.h"
+#include "server/pick.h"
 #include "server/segmentation.h"
 #include "server/segmentation_jobs.h"
 
@@ -48,6 +50,7 @@ struct RenderRequest {
   std::optional<FreeCameraSpec> free;   // a free camera
   int max_side = 0;                     // longest side; 0 = the camera's full resolution
   bool highlight = true;                // tint the current selection
+  float tint = 0.5f;                    // its opacity (the page's highlight slider)
   bool png = false;                     // else JPEG
   std::optional<edit::Rgb> background;
 };
@@ -86,6 +89,8 @@ struct ExportResult {
 };
 
 class AppState {
+  Camera camera_for(const RenderRequest& request) const;
+
  public:
   AppState(SceneBundle bundle, AppOptions options);
   ~AppState();
@@ -101,6 +106,14 @@ class AppState {
   AppStatus status() const;
   std::vector<uint8_t> render(const RenderRequest& request) const;
   std::vector<uint8_t> thumbnail(int index) const { return segmentation_.thumbnail(index); }
+  // For the page's WebGL renderer (scene_binary.h): the Gaussians, and the selection with
+  // the display state's hidden flags.
+  std::vector<uint8_t> splats() const;
+  std::vector<uint8_t> selection_mask() const;
+  // Hide / isolate the selection, show all: drawn by the page and by render(), nothing else.
+  DisplayResult display(DisplayOp op);
+  // The surface point under (x, y), pixels of the view's full-size image (pick-to-focus).
+  PickResult pick(const RenderRequest& view, double x, double y) const;
 
   // Segmentation work runs as jobs; these return the job id.
   uint64_t click(const ClickRecord& click) { return segmentation_.click(click); }
@@ -139,6 +152,7 @@ class AppState {
   ActivityLog log_;
   EditState scene_;
   SceneFiles files_;
+  mutable DisplayState display_;  // forgets its flags when the Gaussian count changes
   JobRunner jobs_;
   SegmentationJobs segmentation_;
 };

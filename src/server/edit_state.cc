@@ -14,16 +14,18 @@ namespace isegman::server {
 
 namespace {
 
-// Tints the selection's coverage magenta (it stands out on any object colour) and draws
-// its outline.
-void highlight(Image& color, const Image& coverage) {
+// Tints the selection's coverage magenta (it stands out on any object colour) at `tint`
+// (0..1, the page's highlight opacity) and draws its outline at twice that, so a low
+// opacity leaves edit results (a recolour) visible.
+void highlight(Image& color, const Image& coverage, float tint_opacity) {
   const float tint[3] = {1.f, 0.2f, 0.8f};
+  const float edge = std::min(1.f, 2 * tint_opacity);
   const int w = color.width, h = color.height;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const float c = std::clamp(coverage.at(x, y), 0.f, 1.f);
       if (c <= 0.f) continue;
-      const float a = 0.5f * c;
+      const float a = tint_opacity * c;
       for (int k = 0; k < 3; ++k) color.at(x, y, k) = color.at(x, y, k) * (1 - a) + tint[k] * a;
     }
   for (int y = 1; y + 1 < h; ++y)
@@ -31,7 +33,7 @@ void highlight(Image& color, const Image& coverage) {
       if (coverage.at(x, y) <= 0.5f) continue;
       if (coverage.at(x - 1, y) <= 0.5f || coverage.at(x + 1, y) <= 0.5f || coverage.at(x, y - 1) <= 0.5f ||
           coverage.at(x, y + 1) <= 0.5f)
-        for (int k = 0; k < 3; ++k) color.at(x, y, k) = tint[k];
+        for (int k = 0; k < 3; ++k) color.at(x, y, k) = color.at(x, y, k) * (1 - edge) + tint[k] * edge;
     }
 }
 
@@ -238,19 +240,32 @@ SelectionBounds EditState::selection_bounds() const {
   return b;
 }
 
-Image EditState::render(const Camera& camera, const RenderSettings& settings, bool with_highlight) const {
+Image EditState::render(const Camera& camera, const RenderSettings& settings, float tint,
+                        const std::vector<bool>* hidden) const {
   RenderOutput out;
   {
     std::shared_lock<std::shared_mutex> lock(mu_);
-    const auto& mask = session_.mask();
+    const bool hides = hidden && hidden->size() == session_.scene().size();
+    std::vector<bool> mask = session_.mask();
+    GaussianScene shown;
+    if (hides) {
+      std::vector<bool> keep(mask.size());
+      std::vector<bool> kept_mask;
+      for (size_t i = 0; i < mask.size(); ++i) {
+        keep[i] = !(*hidden)[i];
+        if (keep[i]) kept_mask.push_back(mask[i]);
+      }
+      shown = session_.scene().subset(keep);
+      mask = std::move(kept_mask);
+    }
     std::vector<float> values;
-    if (with_highlight && std::find(mask.begin(), mask.end(), true) != mask.end()) {
+    if (tint > 0 && std::find(mask.begin(), mask.end(), true) != mask.end()) {
       values.resize(mask.size());
       for (size_t i = 0; i < mask.size(); ++i) values[i] = mask[i] ? 1.f : 0.f;
     }
-    out = isegman::render(session_.scene(), camera, settings, values.empty() ? nullptr : &values);
+    out = isegman::render(hides ? shown : session_.scene(), camera, settings, values.empty() ? nullptr : &values);
   }
-  if (!out.value.empty()) highlight(out.color, out.value);
+  if (!out.value.empty()) highlight(out.color, out.value, tint);
   return std::move(out.color);
 }
 

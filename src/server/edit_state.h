@@ -114,8 +114,17 @@ class EditState {
   Timeline timeline() const;
   SelectionBounds selection_bounds() const;
 
-  // Renders the edited scene, the selection tinted when `highlight`.
-  Image render(const Camera& camera, const RenderSettings& settings, bool highlight) const;
+  // Renders the edited scene, the selection tinted at opacity `tint` (0: not highlighted),
+  // without the Gaussians flagged in `hidden` (the page's display state; null: all drawn).
+  Image render(const Camera& camera, const RenderSettings& settings, float tint,
+               const std::vector<bool>* hidden = nullptr) const;
+  // Runs `fn(scene, selection mask, revision, fingerprint)` under the read lock, for views of the
+  // scene that need the Gaussians and the selection together (the page's splat data).
+  template <typename Fn>
+  auto read(Fn&& fn) const {
+    std::shared_lock<std::shared_mutex> lock(mu_);
+    return fn(session_.scene(), session_.mask(), revision_.load(), fingerprint_);
+  }
   std::vector<uint8_t> serialize(edit::SceneFormat format) const;
   // Writes the scene to `path` (never one of `inputs`); returns the Gaussian count.
   size_t write(const std::string& path, const std::vector<std::string>& inputs, std::vector<std::string>* notes) const;

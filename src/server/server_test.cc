@@ -2,7 +2,9 @@
 #include <httplib.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -248,6 +250,67 @@ TEST(ServerApi, OrbitPivotIgnoresFarOutliers) {
   const double dist = scene["orbit_distance"].get<double>();
   EXPECT_GT(dist, 0.0);
   EXPECT_LT(dist, 10 * norm(hi0 - lo0));
+}
+
+// The WebGL view's data (scene_binary.h), the display state and pick-to-focus.
+TEST(ServerApi, SplatsMaskDisplayAndPick) {
+  DemoScene d = small_demo();
+  Running s(d.bundle, no_segmentation(temp_dir("splats")));
+  const size_t n = d.bundle.gaussians.size();
+  auto get = [&](const std::string& path) {
+    auto r = s.client->Get(path.c_str());
+    EXPECT_TRUE(r) << path;
+    EXPECT_EQ(r ? r->status : 0, 200) << path << ": " << (r ? r->body : "");
+    return r ? r->body : std::string();
+  };
+  const std::string splats = get("/api/splats");
+  ASSERT_EQ(splats.size(), 32 + 40 * n);
+  EXPECT_EQ(splats.substr(0, 4), "ISGS");
+  std::string mask = get("/api/selection/mask");
+  ASSERT_EQ(mask.size(), 32 + n);
+  EXPECT_EQ(mask.substr(0, 4), "ISGM");
+  EXPECT_EQ(std::count(mask.begin() + 32, mask.end(), '\0'), long(n));
+
+  // Hide needs a selection; hiding everything empties the renders, show all restores them.
+  s.post_json("/api/display/hide", "", 409);
+  const std::string before = get("/api/render?view=0&size=120&format=png");
+  s.post_json("/api/select/all", "{}");
+  json h = s.post_json("/api/display/hide", "");
+  EXPECT_EQ(h["hidden"].get<size_t>(), n);
+  mask = get("/api/selection/mask");
+  EXPECT_EQ(std::count(mask.begin() + 32, mask.end(), '\3'), long(n));  // selected and hidden
+  EXPECT_NE(get("/api/render?view=0&size=120&format=png"), before);
+  const Camera& cam = d.bundle.cameras[0];
+  const std::string centre = "/api/pick?view=0&x=" + std::to_string(cam.width / 2.0) + "&y=" + std::to_string(cam.height / 2.0);
+  EXPECT_FALSE(s.get_json(centre)["hit"].get<bool>());  // nothing drawn, nothing to pick
+  s.post_json("/api/display/show", "");
+  EXPECT_EQ(get("/api/render?view=0&size=120&format=png&highlight=0"),
+            get("/api/render?view=0&size=120&format=png&highlight=0&t=again"));
+  s.post_json("/api/select/clear", "{}");
+  EXPECT_EQ(get("/api/render?view=0&size=120&format=png"), before);
+  // The history saw the selections only: display changes are not steps.
+  EXPECT_EQ(s.get_json("/api/status")["history"]["entries"].size(), 2u);
+
+  // Pick: the surface point under the centre of camera 0 projects back onto that pixel.
+  json p = s.get_json(centre);
+  ASSERT_TRUE(p["hit"].get<bool>()) << p;
+  const Vec3 point{p["point"][0].get<double>(), p["point"][1].get<double>(), p["point"][2].get<double>()};
+  double u = 0, v = 0;
+  ASSERT_TRUE(cam.project(point, u, v));
+  EXPECT_NEAR(u, cam.width / 2.0, 0.01);
+  EXPECT_NEAR(v, cam.height / 2.0, 0.01);
+  s.get_json("/api/pick?view=0&x=3", 400);
+  s.get_json("/api/pick?view=99&x=3&y=3", 400);
+
+  // Hidden flags are dropped when the Gaussian count changes (a removal).
+  s.post_json("/api/select/sphere", R"({"center": [0, 0, 0], "radius": 0.5})");
+  s.post_json("/api/display/isolate", "");
+  EXPECT_GT(s.get_json("/api/status")["edit"]["selected"].get<size_t>(), 0u);
+  s.post_json("/api/edit/remove", "{}");
+  mask = get("/api/selection/mask");
+  uint32_t hidden = 0;
+  std::memcpy(&hidden, mask.data() + 12, 4);
+  EXPECT_EQ(hidden, 0u);
 }
 
 TEST(ServerApi, CombineLoadsASecondScene) {

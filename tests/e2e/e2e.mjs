@@ -2,7 +2,10 @@
 // against `isegman serve` on the demo scene. It opens the page, clicks an object, waits
 // for the 3D selection, removes it, undoes and redoes the removal, exports (download
 // and on the server) and checks that the exported PLY has fewer Gaussians and that the
-// object's pixels changed in a render. Screenshots go to $ISEGMAN_E2E_WORK/screenshots.
+// object's pixels changed in a render. On the way: the highlight toggle, isolate / hide /
+// show all (server renders and the WebGL view), double-click focus and orbiting around the
+// picked point. Chromium runs WebGL2 on SwiftShader (no GPU). Screenshots (1366x768) go to
+// $ISEGMAN_E2E_WORK/screenshots.
 // Exit 77 (skipped) when chromium, playwright-core or the SAM models are absent.
 import { spawn, execFileSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -100,6 +103,129 @@ async function renderDiff(page, urlA, urlB, box) {
   }, { urlA, urlB, box });
 }
 
+// Mean absolute difference (0..1) of two screenshots of the view (PNG buffers), inside and
+// outside a box of fractions (whole image when none); decoded in the page.
+async function shotDiff(page, a, b, box = [0, 0, 0, 0]) {
+  const toUrl = (buf) => `data:image/png;base64,${buf.toString('base64')}`;
+  return renderDiff(page, toUrl(a), toUrl(b), box);
+}
+
+const frameShot = async (page) => (await page.$('#frame')).screenshot();
+
+// Highlight on/off and its opacity; isolate, hide and show all on the server renders and
+// in the WebGL free view. Needs the clicked object selected; leaves everything shown.
+async function displayChecks(page, fx, selected) {
+  const loads = async () => Number(await page.getAttribute('#view-img', 'data-loads') || 0);
+  const waitLoad = async (n) => page.waitForFunction((k) => Number(document.getElementById('view-img').dataset.loads || 0) > k,
+    n, { timeout: 20000 });
+  const lit = await frameShot(page);
+  let n = await loads();
+  await page.uncheck('#hl-on');
+  await waitLoad(n);
+  await page.waitForTimeout(300);
+  const plain = await frameShot(page);
+  const hl = await shotDiff(page, lit, plain, fx.bbox);
+  check(hl.inside > 0.02 && hl.outside < hl.inside / 3, `the highlight toggle changes the object (${hl.inside.toFixed(3)}), not the rest (${hl.outside.toFixed(3)})`);
+  n = await loads();
+  await page.check('#hl-on');
+  await page.$eval('#hl-opacity', (e) => { e.value = '0.2'; e.dispatchEvent(new Event('input')); e.dispatchEvent(new Event('change')); });
+  await waitLoad(n);
+  await page.waitForTimeout(300);
+  const faint = await shotDiff(page, await frameShot(page), plain, fx.bbox);
+  check(faint.inside > 0.003 && faint.inside < hl.inside * 0.8,
+    `a lower highlight opacity tints less (${faint.inside.toFixed(3)} < ${hl.inside.toFixed(3)})`);
+  await page.screenshot({ path: path.join(shots, '03b-highlight-faint.png') });
+
+  // Isolate: everything but the selection disappears from the view; show all brings it back.
+  const total = fx.total_gaussians;
+  const shown = await frameShot(page);
+  n = await loads();
+  await page.click('#btn-isolate');
+  await page.waitForSelector(`body[data-hidden="${total - selected}"]`, { timeout: 10000 });
+  await waitLoad(n);
+  await page.waitForTimeout(300);
+  const isolated = await frameShot(page);
+  const iso = await shotDiff(page, shown, isolated, fx.bbox);
+  check(iso.outside > 0.05, `isolate hides the rest of the scene in the server render (${iso.outside.toFixed(3)} outside the object)`);
+  await page.screenshot({ path: path.join(shots, '03c-isolated.png') });
+  // The same in the WebGL view of the free camera.
+  await page.click('#btn-orbit');
+  await page.waitForSelector('#frame[data-key^="f"]');
+  // Debian's Chromium has SwiftShader, so WebGL2 is there without a GPU; a build without it
+  // falls back to server renders, which must hide the same Gaussians.
+  const renderer = await page.getAttribute('body', 'data-renderer');
+  log(`free camera drawn by: ${renderer}`);
+  if (renderer !== 'webgl') log('WARNING: no WebGL2 in this Chromium; the WebGL checks below run on server renders');
+  await page.waitForTimeout(1500);
+  const glIsolated = await frameShot(page);
+  await page.screenshot({ path: path.join(shots, '03d-isolated-webgl.png') });
+  await page.click('#btn-show-all');
+  await page.waitForSelector('body[data-hidden="0"]', { timeout: 10000 });
+  await page.waitForTimeout(1500);
+  const glAll = await frameShot(page);
+  const glDiff = await shotDiff(page, glIsolated, glAll);
+  check(glDiff.outside > 0.05, `show all brings the hidden Gaussians back in the ${renderer} view (${glDiff.outside.toFixed(3)})`);
+  await page.screenshot({ path: path.join(shots, '03e-webgl-all.png') });
+  // Hide: the selection goes, the rest stays.
+  await page.click('#btn-hide');
+  await page.waitForSelector(`body[data-hidden="${selected}"]`, { timeout: 10000 });
+  await page.waitForTimeout(1500);
+  const glHidden = await frameShot(page);
+  await page.screenshot({ path: path.join(shots, '03f-hidden-webgl.png') });
+  const hid = await shotDiff(page, glAll, glHidden);
+  check(hid.outside > 0.002, `hide removes the selection from the ${renderer} view (${hid.outside.toFixed(3)})`);
+  await page.click('#btn-show-all');
+  await page.waitForSelector('body[data-hidden="0"]', { timeout: 10000 });
+  const status = await (await page.evaluate(() => fetch('/api/status').then((r) => r.json())));
+  check(status.edit.gaussians === total && status.history.entries.length === 1,
+    'hide / isolate are display only: the scene and the history are unchanged');
+}
+
+// Double click on the object: the free camera orbits around the picked surface point,
+// which lies on the selected object; a double click sends no segmentation click.
+async function focusChecks(page, fx) {
+  await page.selectOption('#camera-select', String(fx.camera));
+  await page.waitForSelector(`#view-img[data-key="v${fx.camera}"]:visible`);
+  const clicks = await page.getAttribute('body', 'data-clicks');
+  const bounds = await page.evaluate(() => fetch('/api/selection/bounds').then((r) => r.json()));
+  const inside = (p) => p.every((v, k) => v >= bounds.lo[k] - 0.1 * bounds.radius && v <= bounds.hi[k] + 0.1 * bounds.radius);
+  const box = await (await page.$('#view-img')).boundingBox();
+  await page.mouse.dblclick(box.x + fx.click[0] * box.width, box.y + fx.click[1] * box.height);
+  await page.waitForSelector('body[data-focus]', { timeout: 20000 });
+  await page.waitForSelector('#frame[data-key^="f"]');
+  const p1 = (await page.getAttribute('body', 'data-focus')).split(',').map(Number);
+  check(inside(p1), `double click focuses on the clicked object (${p1.map((v) => v.toFixed(2))})`);
+  await page.waitForTimeout(1000);
+  check(await page.getAttribute('body', 'data-clicks') === clicks, 'a double click sends no segmentation click');
+  await page.screenshot({ path: path.join(shots, '03g-focused.png') });
+  // Orbit around it: the pivot stays at the centre of the view, so a double click there
+  // lands on the object again.
+  const fb = await (await page.$('#frame')).boundingBox();
+  const cx = fb.x + fb.width / 2, cy = fb.y + fb.height / 2;
+  await page.mouse.move(cx - 40, cy);
+  await page.mouse.down();
+  await page.mouse.move(cx + 40, cy - 15, { steps: 8 });
+  await page.mouse.up();
+  await page.waitForTimeout(1500);
+  await page.screenshot({ path: path.join(shots, '03h-orbited.png') });
+  await page.evaluate(() => { delete document.body.dataset.focus; });
+  await page.mouse.dblclick(cx, cy);
+  await page.waitForSelector('body[data-focus]', { timeout: 20000 });
+  const p2 = (await page.getAttribute('body', 'data-focus')).split(',').map(Number);
+  check(inside(p2), `after orbiting, the object is still at the centre of the view (${p2.map((v) => v.toFixed(2))})`);
+  // Fly mode: F, then holding W moves the camera forward.
+  await page.keyboard.press('f');
+  await page.waitForSelector('#btn-fly.on');
+  const key0 = await page.getAttribute('#frame', 'data-key');
+  await page.keyboard.down('w');
+  await page.waitForTimeout(400);
+  await page.keyboard.up('w');
+  await page.waitForTimeout(300);
+  check(await page.getAttribute('#frame', 'data-key') !== key0, 'fly mode: holding W moves the free camera');
+  await page.keyboard.press('f');
+  await page.waitForSelector('#btn-fly:not(.on)');
+}
+
 let page = null;
 try {
   const fx = JSON.parse(execFileSync(fixtureBin, [path.join(work, 'fixture')]).toString());
@@ -110,8 +236,9 @@ try {
   context = await chromium.launchPersistentContext(userDataDir, {
     executablePath: CHROMIUM,
     headless: true,
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update', '--no-first-run'],
-    viewport: { width: 1440, height: 900 },
+    args: ['--headless', '--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--ignore-gpu-blocklist',
+      '--disable-background-networking', '--disable-component-update', '--no-first-run'],
+    viewport: { width: 1366, height: 768 },
     acceptDownloads: true,
   });
   page = context.pages()[0] || await context.newPage();
@@ -137,12 +264,11 @@ try {
 
   const img = await page.$('#view-img');
   const box = await img.boundingBox();
-  // A double click is one click (the page debounces it).
-  await page.mouse.dblclick(box.x + fx.click[0] * box.width, box.y + fx.click[1] * box.height);
+  await page.mouse.click(box.x + fx.click[0] * box.width, box.y + fx.click[1] * box.height);
   await page.waitForSelector('body[data-clicks="1"][data-busy="false"]', { timeout: 60000 });
   await page.waitForTimeout(1200);
   check(await page.getAttribute('body', 'data-clicks') === '1' && await page.getAttribute('body', 'data-busy') === 'false',
-    'a double click sends one click');
+    'a click sends one click');
   const selected = Number(await page.getAttribute('body', 'data-selected'));
   log(`selected ${selected} Gaussians (object has ${fx.object_gaussians})`);
   check(selected > 0.5 * fx.object_gaussians && selected < 1.6 * fx.object_gaussians,
@@ -155,6 +281,10 @@ try {
     'the clicked view is shown as not inspected, not as "overlap 0 %"');
   await page.waitForTimeout(500);
   await page.screenshot({ path: path.join(shots, '03-selected.png') });
+  await displayChecks(page, fx, selected);
+  await focusChecks(page, fx);
+  await page.selectOption('#camera-select', String(fx.camera));
+  await page.waitForSelector(`#view-img[data-key="v${fx.camera}"]:visible`);
 
   const total = fx.total_gaussians;
   await page.click('#btn-remove');
@@ -221,11 +351,11 @@ try {
   await selectionToolSteps({ page, fx, work, shots, check, log });
 
   await page.click('#btn-orbit');
-  await page.waitForSelector('#view-img[data-key^="f"]');
+  await page.waitForSelector('#frame[data-key^="f"]');
   await page.waitForTimeout(300);
   await page.screenshot({ path: path.join(shots, '05-free-camera.png') });
   // Orbit a little, then "Nearest view" returns to the training camera it started from.
-  const vb = await (await page.$('#view-img')).boundingBox();
+  const vb = await (await page.$('#frame')).boundingBox();
   await page.mouse.move(vb.x + vb.width / 2, vb.y + vb.height / 2);
   await page.mouse.down();
   await page.mouse.move(vb.x + vb.width / 2 + 12, vb.y + vb.height / 2, { steps: 3 });

@@ -6,9 +6,11 @@ import { Strip } from './strip.js';
 import { Panels } from './panels.js';
 import { SelectionTools } from './tools.js';
 import { Files } from './files.js';
+import { bindDisplay } from './display_controls.js';
+import { initLayout } from './layout.js';
 
 const $ = (id) => document.getElementById(id);
-let scene = null, viewer = null, strip = null, panels = null;
+let scene = null, viewer = null, strip = null, panels = null, display = null;
 let status = null, lastRevision = -1, lastLogSeq = 0, pollTimer = null;
 let marks = [], redoMarks = [];
 let toastTimer = null;
@@ -125,9 +127,10 @@ function render(s) {
 
   strip.update(seg, viewer.free ? -1 : viewer.cameraIndex);
   panels.update(s);
+  display.update(s);
   if (ed.revision !== lastRevision) {
     lastRevision = ed.revision;
-    viewer.render();
+    viewer.refresh();  // the WebGL view's selection mask (and splats after an edit), or a server render
   }
   const log = $('log');
   for (const e of [...s.log].reverse()) {
@@ -168,6 +171,7 @@ function populateCameras() {
   $('btn-prev').addEventListener('click', () => step(-1));
   $('btn-next').addEventListener('click', () => step(1));
   $('btn-orbit').addEventListener('click', () => viewer.setFree(!viewer.free));
+  $('btn-fly').addEventListener('click', () => viewer.setFly(!viewer.fly));
   $('btn-hd').addEventListener('click', () => viewer.render('full'));
   $('btn-nearest').addEventListener('click', nearest);
   return step;
@@ -196,6 +200,7 @@ function bindKeys(step) {
     else if (k === 'ArrowRight') step(1);
     else if (k === 'o' || k === 'O') viewer.setFree(!viewer.free);
     else if (k === 'n' || k === 'N') nearest();
+    else if (k === 'f' || k === 'F') viewer.setFly(!viewer.fly);
     else if (k === 'h' || k === 'H') viewer.render('full');
     else if (k === 'Delete' || k === 'Backspace') { if (status && status.edit.selected > 0) panels.edit('remove'); }
     else if (k === 'i' || k === 'I') panels.select('invert');
@@ -221,15 +226,20 @@ async function main() {
   $('scene-name').textContent = scene.name;
   $('out-dir').textContent = `server folder: ${scene.out_dir}`;
   viewer = new Viewer({
-    stage: $('stage'), frame: $('frame'), img: $('view-img'), canvas: $('view-marks'), caption: $('view-caption'), scene,
+    stage: $('stage'), frame: $('frame'), img: $('view-img'), glCanvas: $('view-gl'), canvas: $('view-marks'), caption: $('view-caption'), scene,
     onClick: click, onError: showError,
-    onModeChange: () => { $('btn-orbit').classList.toggle('on', viewer.free); $('btn-nearest').disabled = !viewer.free; if (status) strip.update(status.segmentation, viewer.free ? -1 : viewer.cameraIndex); },
+    onModeChange: () => {
+      $('btn-orbit').classList.toggle('on', viewer.free); $('btn-fly').classList.toggle('on', viewer.fly);
+      $('btn-nearest').disabled = !viewer.free; if (status) strip.update(status.segmentation, viewer.free ? -1 : viewer.cameraIndex);
+    },
   });
   strip = new Strip($('strip'), (cam) => { $('camera-select').value = String(cam); viewer.setCamera(cam); });
   panels = new Panels({ api, run, runJob, scene, onClickWalked: clickWalked });
   new SelectionTools({ api, run, scene, frame: $('frame'), bar: $('tool-bar'), card: $('card-seltools'),
-    target: () => viewer.shown && viewer.shown.target, mode: () => panels.selMode });
+    target: () => viewer.shown && viewer.shown.target, mode: () => panels.selMode, flying: () => viewer.fly });
   new Files({ api, run, scene, transform: () => panels.transform() });
+  display = bindDisplay({ api, run, viewer });
+  initLayout();
   const step = populateCameras();
   bindKeys(step);
   viewer.fit();

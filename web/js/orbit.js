@@ -52,6 +52,36 @@ export class Orbit {
     this.target = add(this.target, add(mul(right, -dx * k), mul(camUp, dy * k)));
   }
 
+  // Pick-to-focus: orbit around `point` from where the camera is (the view does not jump).
+  focus(point) {
+    const eye = this.eye();
+    const off = sub(eye, point);
+    const d = Math.hypot(...off);
+    if (!(d > 1e-9)) return;
+    this.target = point.slice();
+    this.distance = d;
+    const u = mul(off, 1 / d);
+    this.pitch = Math.asin(Math.max(-1, Math.min(1, dot(u, this.up))));
+    this.yaw = Math.atan2(dot(u, this.e2), dot(u, this.e1));
+    this.clampPitch();
+  }
+
+  // Fly mode: mouse look turns the camera about its own position.
+  look(dx, dy) {
+    const eye = this.eye();
+    this.yaw -= dx * 0.004; this.pitch += dy * 0.004; this.clampPitch();
+    const c = Math.cos(this.pitch);
+    const dir = add(add(mul(this.e1, c * Math.cos(this.yaw)), mul(this.e2, c * Math.sin(this.yaw))), mul(this.up, Math.sin(this.pitch)));
+    this.target = sub(eye, mul(dir, this.distance));
+  }
+
+  // Fly mode: moves eye and target together (forward, right, up; world units).
+  move(forward, right, up) {
+    const f = norm(sub(this.target, this.eye()));
+    const r = norm(cross(f, this.up));
+    this.target = add(this.target, add(add(mul(f, forward), mul(r, right)), mul(this.up, up)));
+  }
+
   zoom(factor) { this.distance = Math.max(1e-4, Math.min(1e6, this.distance * factor)); }
 
   // The free camera as the API takes it.

@@ -32,8 +32,8 @@ export class SelectionTools {
   // panel card for options, grow/shrink and ranges; target(): what the view shows,
   // {view} or {camera: spec} (null before the first frame); mode(): the panel's combine
   // mode; run(fn): runs a request, showing its result or error.
-  constructor({ api, run, scene, frame, bar, card, target, mode }) {
-    Object.assign(this, { api, run, scene, frame, target, mode });
+  constructor({ api, run, scene, frame, bar, card, target, mode, flying = () => false }) {
+    Object.assign(this, { api, run, scene, frame, target, mode, flying });
     this.tool = 'pick';
     this.brushPx = 24;
     this.points = null;
@@ -129,6 +129,10 @@ export class SelectionTools {
     const o = this.overlay;
     const at = (e) => { const r = o.getBoundingClientRect(); return [e.clientX - r.left, e.clientY - r.top]; };
     o.addEventListener('contextmenu', (e) => e.preventDefault());
+    // The viewer orbits on the frame's pointer events: a stroke of a drawing tool is not
+    // an orbit, so the overlay keeps its events to itself.
+    for (const ev of ['pointerdown', 'pointermove', 'pointerup', 'dblclick'])
+      o.addEventListener(ev, (e) => e.stopPropagation());
     o.addEventListener('pointerdown', (e) => {
       if (e.button !== 0) return;
       o.setPointerCapture(e.pointerId);
@@ -150,12 +154,7 @@ export class SelectionTools {
       this.points = null;
       this.finish(pts, this.modeFor(e));
     });
-    // The wheel still zooms the view under a drawing tool.
-    o.addEventListener('wheel', (e) => {
-      e.preventDefault();
-      const img = this.frame.querySelector('img');
-      if (img) img.dispatchEvent(new WheelEvent('wheel', e));
-    }, { passive: false });
+    // The wheel is left to bubble to the frame: it still zooms the view under a drawing tool.
   }
 
   finish(pts, mode) {
@@ -255,6 +254,7 @@ export class SelectionTools {
       const typing = tag === 'select' || tag === 'textarea' ||
         (tag === 'input' && !['checkbox', 'range', 'radio', 'color'].includes(e.target.type));
       if (typing || e.ctrlKey || e.metaKey || e.altKey) return;
+      if (this.flying()) return;  // fly mode moves with WASD/QE: its keys are not tool keys
       const k = e.key;
       const tool = TOOLS.find((t) => t.key === k.toLowerCase() && !e.shiftKey);
       let handled = true;

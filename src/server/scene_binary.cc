@@ -1,0 +1,77 @@
+#include "server/scene_binary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace isegman::server {
+
+namespace {
+
+constexpr float kShC0 = 0.28209479177387814f;  // the degree-0 SH basis constant
+
+template <typename T>
+void put(std::vector<uint8_t>& out, size_t& at, T v) {
+  std::memcpy(out.data() + at, &v, sizeof(T));  // x86/ARM are little-endian, as the page reads
+  at += sizeof(T);
+}
+
+void put_header(std::vector<uint8_t>& out, const char magic[4], uint32_t count, uint32_t third, uint64_t a,
+                uint64_t b) {
+  size_t at = 0;
+  std::memcpy(out.data(), magic, 4);
+  at = 4;
+  put<uint32_t>(out, at, 1);
+  put<uint32_t>(out, at, count);
+  put<uint32_t>(out, at, third);
+  put<uint64_t>(out, at, a);
+  put<uint64_t>(out, at, b);
+}
+
+uint8_t unit_byte(double v) { return uint8_t(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
+
+}  // namespace
+
+std::vector<uint8_t> pack_splats(const GaussianScene& scene, uint64_t fingerprint) {
+  const size_t n = scene.size();
+  std::vector<uint8_t> out(kSceneBinaryHeaderBytes + n * kSplatRecordBytes);
+  put_header(out, "ISGS", uint32_t(n), kSplatRecordBytes, fingerprint, 0);
+  size_t at = kSceneBinaryHeaderBytes;
+  const int k = scene.coeffs();
+  for (size_t i = 0; i < n; ++i) {
+    for (int c = 0; c < 3; ++c) put<float>(out, at, scene.positions[3 * i + c]);
+    const float* dc = scene.sh.data() + i * size_t(k) * 3;  // coefficient 0, channels r g b
+    for (int c = 0; c < 3; ++c) out[at++] = unit_byte(0.5 + kShC0 * dc[c]);
+    out[at++] = unit_byte(scene.activated_opacity(i));
+    // Sigma = M M^T with M = R S (the 3DGS computeCov3D).
+    const Mat3 r = scene.rotation(i).to_matrix();
+    const Vec3 s = scene.scale(i);
+    double m[3][3];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) m[a][b] = r.m[a][b] * s[b];
+    auto cov = [&](int a, int b) { return m[a][0] * m[b][0] + m[a][1] * m[b][1] + m[a][2] * m[b][2]; };
+    put<float>(out, at, float(cov(0, 0)));
+    put<float>(out, at, float(cov(0, 1)));
+    put<float>(out, at, float(cov(0, 2)));
+    put<float>(out, at, float(cov(1, 1)));
+    put<float>(out, at, float(cov(1, 2)));
+    put<float>(out, at, float(cov(2, 2)));
+  }
+  return out;
+}
+
+std::vector<uint8_t> pack_selection(const std::vector<bool>& selected, const std::vector<bool>& hidden,
+                                    uint64_t fingerprint, uint64_t revision) {
+  const size_t n = selected.size();
+  std::vector<uint8_t> out(kSceneBinaryHeaderBytes + n);
+  uint32_t hidden_count = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const bool h = i < hidden.size() && hidden[i];
+    hidden_count += h;
+    out[kSceneBinaryHeaderBytes + i] = uint8_t((selected[i] ? 1 : 0) | (h ? 2 : 0));
+  }
+  put_header(out, "ISGM", uint32_t(n), hidden_count, fingerprint, revision);
+  return out;
+}
+
+}  // namespace isegman::server

@@ -1,0 +1,324 @@
+// Client-side WebGL2 renderer of the scene's Gaussians for navigation (the server's
+// rasteriser stays the reference for evidence, clicked views and exports). It follows
+// the INRIA rasteriser: EWA projection with the perspective Jacobian (x/z, y/z clamped to
+// 1.3x the half field of view), +0.3 px on the 2D covariance diagonal, alpha =
+// min(0.99, o exp(-d^2/2)) cut at 1/255, base colour from the SH DC term, splats blended
+// far to near (sorted in sort_worker.js). Camera convention: OpenCV axes, p_cam = R p + t.
+//
+// Data: /api/splats (src/server/scene_binary.h) becomes a RGBA32UI texture, three texels
+// per splat (centre + packed colour, covariance xx xy xz yy, yz zz); /api/selection/mask
+// a R8UI texture (bit 0 selected, bit 1 hidden); the sorted indices a R32UI texture.
+const ROW = 1024;  // splats per texture row (3 texels each)
+const NEAR = 0.2;  // the rasteriser's near plane
+// While moving, quality steps down until a frame takes under ~50 ms (SwiftShader, the
+// software WebGL of a machine without GPU, draws all of fern at 960x540 in ~0.8 s):
+// [resolution divisor, share of the splats drawn, most important first].
+const LADDER = [[1, 1], [1, 1 / 2], [1.5, 1 / 2], [2, 1 / 2], [2, 1 / 4], [3, 1 / 4], [3, 1 / 8], [4, 1 / 8], [4, 1 / 16], [6, 1 / 16]];
+
+const VS = `#version 300 es
+precision highp float; precision highp int; precision highp usampler2D;
+uniform usampler2D u_splats; uniform usampler2D u_mask; uniform usampler2D u_order;
+uniform mat3 u_R; uniform vec3 u_t; uniform vec2 u_focal; uniform vec2 u_size; uniform vec2 u_tan;
+uniform float u_tint;
+out vec4 v_color; out vec2 v_pos;
+// Two triangles per splat from gl_VertexID, no attributes (instancing is ~3x slower on
+// SwiftShader, which draws instances one by one; indexed corners and point sprites were
+// no faster); the splat is the sorted order's entry gl_VertexID / 6.
+const vec2 CORNERS[6] = vec2[6](vec2(-1, -1), vec2(1, -1), vec2(-1, 1), vec2(-1, 1), vec2(1, -1), vec2(1, 1));
+void main() {
+  int slot = gl_VertexID / 6;
+  vec2 a_corner = CORNERS[gl_VertexID % 6];
+  uint a_index = texelFetch(u_order, ivec2(slot % 2048, slot / 2048), 0).r;
+  ivec2 at = ivec2(int(a_index % ${ROW}u) * 3, int(a_index / ${ROW}u));
+  uvec4 A = texelFetch(u_splats, at, 0), B = texelFetch(u_splats, at + ivec2(1, 0), 0),
+        C = texelFetch(u_splats, at + ivec2(2, 0), 0);
+  uint flags = texelFetch(u_mask, ivec2(int(a_index % 2048u), int(a_index / 2048u)), 0).r;
+  vec3 c = u_R * uintBitsToFloat(A.xyz) + u_t;
+  vec4 rgba = vec4(uvec4(A.w & 255u, (A.w >> 8) & 255u, (A.w >> 16) & 255u, A.w >> 24)) / 255.0;
+  if ((flags & 2u) != 0u || c.z < ${NEAR} || rgba.a < 1.0 / 255.0) { gl_Position = vec4(0.0, 0.0, 2.0, 1.0); return; }
+  vec4 b = uintBitsToFloat(B); vec2 cc = uintBitsToFloat(C.xy);
+  mat3 V = mat3(b.x, b.y, b.z, b.y, b.w, cc.x, b.z, cc.x, cc.y);
+  vec2 lim = 1.3 * u_tan;
+  float tx = clamp(c.x / c.z, -lim.x, lim.x) * c.z, ty = clamp(c.y / c.z, -lim.y, lim.y) * c.z;
+  float iz = 1.0 / c.z;
+  mat3 J = mat3(u_focal.x * iz, 0.0, 0.0, 0.0, u_focal.y * iz, 0.0,
+                -u_focal.x * tx * iz * iz, -u_focal.y * ty * iz * iz, 0.0);
+  mat3 T = J * u_R;
+  mat3 S = T * V * transpose(T);
+  float a = S[0][0] + 0.3, bb = S[0][1], d = S[1][1] + 0.3;
+  float mid = 0.5 * (a + d), rad = length(vec2(0.5 * (a - d), bb));
+  float l1 = mid + rad, l2 = max(mid - rad, 1e-4);
+  vec2 e1 = abs(bb) > 1e-9 ? normalize(vec2(bb, l1 - a)) : (a >= d ? vec2(1.0, 0.0) : vec2(0.0, 1.0));
+  vec2 e2 = vec2(-e1.y, e1.x);
+  // Out to where alpha falls below 1/255 (at most 3 sigma, the rasteriser's radius).
+  float k = min(3.0, sqrt(2.0 * log(255.0 * rgba.a)));
+  vec2 px = vec2(u_focal.x * c.x * iz, u_focal.y * c.y * iz) + 0.5 * u_size
+          + a_corner.x * k * sqrt(l1) * e1 + a_corner.y * k * sqrt(l2) * e2;
+  gl_Position = vec4(2.0 * px.x / u_size.x - 1.0, 1.0 - 2.0 * px.y / u_size.y, 0.0, 1.0);
+  v_pos = a_corner * k;
+  vec3 col = rgba.rgb;
+  if ((flags & 1u) != 0u) col = mix(col, vec3(1.0, 0.2, 0.8), u_tint);
+  v_color = vec4(col, rgba.a);
+}`;
+
+const FS = `#version 300 es
+precision highp float;
+in vec4 v_color; in vec2 v_pos; out vec4 o;
+void main() {
+  float alpha = min(0.99, v_color.a * exp(-0.5 * dot(v_pos, v_pos)));
+  if (alpha < 1.0 / 255.0) discard;
+  o = vec4(v_color.rgb * alpha, alpha);
+}`;
+
+function compile(gl, type, src) {
+  const s = gl.createShader(type);
+  gl.shaderSource(s, src); gl.compileShader(s);
+  if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(`splat shader: ${gl.getShaderInfoLog(s)}`);
+  return s;
+}
+
+function readHeader(buf, magic) {
+  const dv = new DataView(buf);
+  const got = String.fromCharCode(...new Uint8Array(buf, 0, 4));
+  if (buf.byteLength < 32 || got !== magic) throw new Error(`bad ${magic} data from the server`);
+  const hex = (o) => dv.getUint32(o + 4, true).toString(16).padStart(8, '0') + dv.getUint32(o, true).toString(16).padStart(8, '0');
+  return { count: dv.getUint32(8, true), third: dv.getUint32(12, true), a: hex(16), b: dv.getUint32(24, true) + 2 ** 32 * dv.getUint32(28, true) };
+}
+
+// The camera of an orbit spec ({eye, target, up, fov (horizontal, degrees)}) as
+// Camera::look_at builds it: z forward, x = z cross up, y = z cross x (image down).
+export function lookAt(spec, width, height) {
+  const sub = (p, q) => p.map((v, i) => v - q[i]);
+  const cross = (p, q) => [p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]];
+  const norm = (p) => { const l = Math.hypot(...p) || 1; return p.map((v) => v / l); };
+  const z = norm(sub(spec.target, spec.eye)), x = norm(cross(z, spec.up)), y = cross(z, x);
+  const R = [...x, ...y, ...z];
+  const t = [0, 1, 2].map((r) => -(R[3 * r] * spec.eye[0] + R[3 * r + 1] * spec.eye[1] + R[3 * r + 2] * spec.eye[2]));
+  const f = (0.5 * width) / Math.tan((spec.fov * Math.PI) / 360);
+  return { R, t, fx: f, fy: f, width, height };
+}
+
+export class SplatRenderer {
+  // Null when the browser has no WebGL2 (the page falls back to server renders).
+  static create(canvas, background) {
+    const gl = canvas.getContext('webgl2', { antialias: false, alpha: false, depth: false, stencil: false, powerPreference: 'high-performance' });
+    return gl ? new SplatRenderer(canvas, gl, background) : null;
+  }
+
+  constructor(canvas, gl, background) {
+    Object.assign(this, { canvas, gl, background });
+    this.count = 0; this.drawCount = 0; this.camera = null; this.tint = 0.5;
+    this.moving = false; this.level = 4; this.window = null; this.moves = 0; this.fingerprint = null; this.maskRevision = -1;
+    this.frames = 0; this.lastFrame = 0; this.dirty = false; this.onDraw = null;
+    this.subsetWhileMoving = true;
+    const p = gl.createProgram();
+    gl.attachShader(p, compile(gl, gl.VERTEX_SHADER, VS));
+    gl.attachShader(p, compile(gl, gl.FRAGMENT_SHADER, FS));
+    gl.linkProgram(p);
+    if (!gl.getProgramParameter(p, gl.LINK_STATUS)) throw new Error(`splat program: ${gl.getProgramInfoLog(p)}`);
+    this.program = p;
+    this.loc = Object.fromEntries(['u_splats', 'u_mask', 'u_order', 'u_R', 'u_t', 'u_focal', 'u_size', 'u_tan', 'u_tint']
+      .map((n) => [n, gl.getUniformLocation(p, n)]));
+    this.vao = gl.createVertexArray();  // no attributes: everything comes from textures
+    this.orderTex = gl.createTexture();
+    this.splatTex = gl.createTexture();
+    this.maskTex = gl.createTexture();
+    this.worker = new Worker('/js/sort_worker.js');
+    this.sortId = 0; this.sortBusy = false; this.sortPending = false; this.firstSortOfScene = 0;
+    this.worker.onmessage = (e) => this.sorted(e.data);
+  }
+
+  // Fetches the scene's splats when its fingerprint is not the one loaded (one fetch at a
+  // time: the status poll and a display action may both ask).
+  load(fingerprint = null) {
+    if (fingerprint && fingerprint === this.fingerprint) return Promise.resolve();
+    if (this.loading && (!fingerprint || fingerprint === this.loadingFingerprint)) return this.loading;
+    this.loadingFingerprint = fingerprint;
+    this.loading = this.fetchSplats().finally(() => { this.loading = null; });
+    return this.loading;
+  }
+
+  async fetchSplats() {
+    const res = await fetch('/api/splats', { cache: 'no-store' });
+    if (!res.ok) throw new Error(`splats: ${res.status}`);
+    const buf = await res.arrayBuffer();
+    const h = readHeader(buf, 'ISGS');
+    if (h.third !== 40 || buf.byteLength !== 32 + 40 * h.count) throw new Error('splats: unexpected record layout');
+    const n = h.count, src = new Uint32Array(buf, 32), f = new Float32Array(buf, 32);
+    const rows = Math.max(1, Math.ceil(n / ROW));
+    const texels = new Uint32Array(ROW * 3 * 4 * rows);
+    const positions = new Float32Array(3 * n), score = new Float32Array(n);
+    for (let i = 0; i < n; ++i) {
+      const s = 10 * i, d = 12 * i;
+      texels.set(src.subarray(s, s + 4), d);
+      texels.set(src.subarray(s + 4, s + 8), d + 4);
+      texels[d + 8] = src[s + 8]; texels[d + 9] = src[s + 9];
+      positions[3 * i] = f[s]; positions[3 * i + 1] = f[s + 1]; positions[3 * i + 2] = f[s + 2];
+      // Importance for drawing a subset while moving: opacity x (squared) size.
+      score[i] = (src[s + 3] >>> 24) * (f[s + 4] + f[s + 7] + f[s + 9]);
+    }
+    const importance = new Uint32Array(n).map((_, i) => i).sort((a, b) => score[b] - score[a]);
+    const gl = this.gl;
+    gl.bindTexture(gl.TEXTURE_2D, this.splatTex);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32UI, ROW * 3, rows, 0, gl.RGBA_INTEGER, gl.UNSIGNED_INT, texels);
+    for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
+    this.count = n; this.drawCount = 0; this.fingerprint = h.a;
+    this.setMaskBytes(new Uint8Array(n), -1);  // nothing selected until the mask arrives
+    this.worker.postMessage({ type: 'init', positions, importance }, [positions.buffer, importance.buffer]);
+    this.firstSortOfScene = this.sortId + 1;  // earlier answers index the previous scene
+    this.requestSort();
+  }
+
+  // Selection and hidden flags (/api/selection/mask); reloads the splats first when the
+  // mask is of another scene.
+  async loadMask() {
+    const res = await fetch('/api/selection/mask', { cache: 'no-store' });
+    if (!res.ok) throw new Error(`selection mask: ${res.status}`);
+    const buf = await res.arrayBuffer();
+    const h = readHeader(buf, 'ISGM');
+    if (h.a !== this.fingerprint || h.count !== this.count) await this.load(h.a);
+    if (h.count !== this.count) return null;  // the scene changed again meanwhile
+    this.setMaskBytes(new Uint8Array(buf, 32, h.count), h.b);
+    this.worker.postMessage({ type: 'hidden', flags: h.third > 0 ? new Uint8Array(buf.slice(32)) : null });
+    this.requestSort();
+    return { hidden: h.third, revision: h.b };
+  }
+
+  setMaskBytes(bytes, revision) {
+    const gl = this.gl, rows = Math.max(1, Math.ceil(bytes.length / 2048));
+    const data = new Uint8Array(2048 * rows);
+    data.set(bytes);
+    gl.bindTexture(gl.TEXTURE_2D, this.maskTex);
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.R8UI, 2048, rows, 0, gl.RED_INTEGER, gl.UNSIGNED_BYTE, data);
+    for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
+    this.maskRevision = revision;
+    this.redraw();
+  }
+
+  // `tint`: 0 (highlight off) to 1 (selection drawn magenta).
+  setTint(tint) { this.tint = tint; this.redraw(); }
+
+  // `camera`: {R (row-major world-to-camera), t, fx, fy, width, height}.
+  setCamera(camera) {
+    this.camera = camera;
+    this.moves = (this.moves || 0) + 1;
+    this.requestSort();
+    this.redraw();
+  }
+
+  // The quality step in use: full when still (or with subsetWhileMoving off).
+  step() { return this.moving && this.subsetWhileMoving ? LADDER[this.level] : LADDER[0]; }
+
+  // While moving, a lower resolution and the most important splats only (the step the last
+  // movement settled on); when still, everything at full resolution.
+  setMoving(on) {
+    if (on === this.moving) return;
+    this.moving = on;
+    this.window = null;
+    this.requestSort();
+    this.redraw();
+  }
+
+  requestSort() {
+    if (!this.camera || !this.count) return;
+    if (this.sortBusy) { this.sortPending = true; return; }
+    this.sortBusy = true; this.sortPending = false;
+    const c = this.camera;
+    this.worker.postMessage({ type: 'sort', rot: c.R, t: c.t, tanX: c.width / (2 * c.fx), tanY: c.height / (2 * c.fy),
+      near: NEAR, limit: Math.max(1, Math.round(this.count * this.step()[1])), id: ++this.sortId });
+  }
+
+  sorted({ order, drawn, ms, id }) {
+    this.sortBusy = false;
+    if (id < this.firstSortOfScene) { this.requestSort(); return; }
+    this.sortMs = ms;
+    const gl = this.gl, rows = Math.max(1, Math.ceil(this.count / 2048));
+    gl.bindTexture(gl.TEXTURE_2D, this.orderTex);
+    if (this.orderRows !== rows) {  // sized for every splat once per scene, then updated in place
+      gl.texImage2D(gl.TEXTURE_2D, 0, gl.R32UI, 2048, rows, 0, gl.RED_INTEGER, gl.UNSIGNED_INT, null);
+      for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
+      this.orderRows = rows;
+    }
+    const full = Math.floor(order.length / 2048), rest = order.length - 2048 * full;
+    if (full) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, 2048, full, gl.RED_INTEGER, gl.UNSIGNED_INT, order, 0);
+    if (rest) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, full, rest, 1, gl.RED_INTEGER, gl.UNSIGNED_INT, order, 2048 * full);
+    this.drawCount = drawn;
+    this.redraw();
+    if (this.sortPending) this.requestSort();
+  }
+
+  redraw() {
+    if (this.dirty) return;
+    this.dirty = true;
+    requestAnimationFrame(() => this.frame());
+  }
+
+  frame() {
+    this.dirty = false;
+    this.draw();
+    this.adapt();
+    this.lastFrame = performance.now();
+    this.frames++;
+    this.onDraw?.();
+  }
+
+  // While moving, every ~0.4 s: when the camera moved more often than frames were drawn
+  // (drawing is the bottleneck) and under 20 frames/s, one step down the ladder; when
+  // drawing kept up and at 25 frames/s or more, one step up.
+  adapt() {
+    const now = performance.now();
+    if (!this.moving || !this.subsetWhileMoving) { this.window = null; return; }
+    if (!this.window) { this.window = { t0: now, frames: 0, moves: this.moves }; return; }
+    const w = this.window;
+    w.frames++;
+    const elapsed = now - w.t0;
+    if (elapsed < 400) return;
+    const fps = (1000 * w.frames) / elapsed, moves = this.moves - w.moves;
+    const was = this.level;
+    if (moves > 1.2 * w.frames && fps < 20 && this.level < LADDER.length - 1) this.level++;
+    else if (moves <= 1.2 * w.frames && fps >= 25 && this.level > 0) this.level--;
+    if (this.level !== was) this.requestSort();
+    this.window = { t0: now, frames: 0, moves: this.moves };
+  }
+
+  draw() {
+    const gl = this.gl, bg = this.background;
+    let c = this.camera;
+    if (c) {
+      const div = this.step()[0];
+      const w = Math.max(16, Math.round(c.width / div)), h = Math.max(16, Math.round(c.height / div));
+      c = { ...c, width: w, height: h, fx: (c.fx * w) / c.width, fy: (c.fy * h) / c.height };
+      if (this.canvas.width !== w || this.canvas.height !== h) { this.canvas.width = w; this.canvas.height = h; }
+    }
+    gl.viewport(0, 0, this.canvas.width, this.canvas.height);
+    gl.clearColor(bg[0], bg[1], bg[2], 1);
+    gl.clear(gl.COLOR_BUFFER_BIT);
+    if (!c || !this.drawCount) return;
+    gl.useProgram(this.program);
+    gl.enable(gl.BLEND);
+    gl.blendFunc(gl.ONE, gl.ONE_MINUS_SRC_ALPHA);
+    gl.activeTexture(gl.TEXTURE0); gl.bindTexture(gl.TEXTURE_2D, this.splatTex);
+    gl.activeTexture(gl.TEXTURE1); gl.bindTexture(gl.TEXTURE_2D, this.maskTex);
+    gl.activeTexture(gl.TEXTURE2); gl.bindTexture(gl.TEXTURE_2D, this.orderTex);
+    const L = this.loc;
+    gl.uniform1i(L.u_splats, 0); gl.uniform1i(L.u_mask, 1); gl.uniform1i(L.u_order, 2);
+    gl.uniformMatrix3fv(L.u_R, true, c.R);
+    gl.uniform3fv(L.u_t, c.t);
+    gl.uniform2f(L.u_focal, c.fx, c.fy);
+    gl.uniform2f(L.u_size, c.width, c.height);
+    gl.uniform2f(L.u_tan, c.width / (2 * c.fx), c.height / (2 * c.fy));
+    gl.uniform1f(L.u_tint, this.tint);
+    gl.bindVertexArray(this.vao);
+    gl.drawArrays(gl.TRIANGLES, 0, 6 * this.drawCount);
+    gl.bindVertexArray(null);
+  }
+
+  // The current picture as RGBA bytes (drawn and read in one task, so no preserved buffer).
+  snapshot() {
+    this.draw();
+    const gl = this.gl, w = this.canvas.width, h = this.canvas.height, px = new Uint8Array(4 * w * h);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    return { width: w, height: h, data: px };  // bottom row first
+  }
+}
