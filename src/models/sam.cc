@@ -5,10 +5,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -246,7 +248,13 @@ std::string get_string(std::istream& in) {
 }  // namespace
 
 void SamEmbedding::save(const std::string& path) const {
-  std::string tmp = path + ".tmp" + std::to_string(getpid());
+  // The cache folder may not exist yet (a fresh build, a first run), and two threads or
+  // processes may save the same embedding at once: a temporary name of their own each.
+  static std::atomic<unsigned> serial{0};
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  std::string tmp = path + ".tmp" + std::to_string(getpid()) + "-" + std::to_string(serial++);
   {
     std::ofstream o(tmp, std::ios::binary);
     if (!o) throw Error(path, "cannot write embedding");
