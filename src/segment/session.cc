@@ -99,7 +99,7 @@ int Session::see_through_view(int view, const Click& c) {
   // of the same plant), they are part of what the user means: no peeling.
   const models::SegmentResult direct = sam_->decode(base.embedding, {c});
   size_t inside = 0;
-  for (uint32_t p : occ.pixels) inside += direct.mask.data[p] > 0.5f;
+  for (uint32_t p : occ.pixels) inside += p < direct.mask.data.size() && direct.mask.data[p] > 0.5f;
   if (double(inside) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) return view;
   const std::pair<int, float> key{view, float(occ.cut)};
   for (const auto& [k, index] : peeled_)
