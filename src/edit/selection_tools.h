@@ -4,6 +4,7 @@
 // selections of different scenes.
 #pragma once
 
+#include "core/centre_index.h"
 #include "core/math.h"
 #include "core/scene.h"
 #include "core/selection.h"
@@ -44,25 +45,7 @@ Vec3 base_color(const GaussianScene& scene, size_t i);
 // per channel, so 0..sqrt(3)) of `color` (the eyedropper).
 Selection select_similar_color(const GaussianScene& scene, const Vec3& color, double tolerance);
 
-// k nearest centres of every query point (the tool grow() is built on), exposed for
-// tests: result[q] lists up to k indices, nearest first (ties by index).
-class CentreIndex {
- public:
-  explicit CentreIndex(const GaussianScene& scene);
-  std::vector<uint32_t> nearest(const Vec3& p, int k, double max_distance) const;
-  // Every centre within `radius` of p (boundary included), in index order.
-  std::vector<uint32_t> within(const Vec3& p, double radius) const;
-
- private:
-  struct Node {
-    float lo[3], hi[3];
-    uint32_t begin, end;   // range in order_
-    int32_t left = -1, right = -1;
-  };
-  int build(uint32_t begin, uint32_t end);
-  std::vector<float> pos_;
-  std::vector<uint32_t> order_;
-  std::vector<Node> nodes_;
-};
+// The nearest-centre index grow/shrink use (core/centre_index.h).
+using ::isegman::CentreIndex;
 
 }  // namespace isegman::edit

@@ -7,11 +7,9 @@
 // are clearly not (the neighbour's own body).
 #pragma once
 
-#include <cstdint>
-#include <unordered_map>
 #include <vector>
 
-#include "core/scene.h"
+#include "core/centre_index.h"
 #include "segment/votes.h"
 
 namespace isegman::segment {
@@ -22,25 +20,10 @@ struct CoherenceOptions {
   double min_selected = 0.5;   // share of the observed neighbours that must be selected
 };
 
-// Nearest-neighbour queries over Gaussian centres (a hashed uniform grid: far outliers
-// cost no memory).
-class NeighbourIndex {
- public:
-  explicit NeighbourIndex(const GaussianScene& scene);
-  // The k nearest other Gaussians of Gaussian i (fewer when the scene is smaller).
-  std::vector<uint32_t> nearest(uint32_t i, int k) const;
-
- private:
-  int64_t key(int x, int y, int z) const;
-  void cell_of(uint32_t i, int& x, int& y, int& z) const;
-  const GaussianScene& scene_;
-  double cell_ = 1;
-  std::unordered_map<int64_t, std::vector<uint32_t>> cells_;
-};
-
 // The selection: share > tau (and enough weight), plus the undecided Gaussians (share in
-// (tau_low, tau]) whose observed neighbours are mostly selected by share > tau.
-std::vector<bool> coherent_selection(const VoteAccumulator& votes, const NeighbourIndex& index, double tau,
-                                     double min_total, const CoherenceOptions& options = {});
+// (tau_low, tau]) whose observed k nearest Gaussians (`index`, built over `scene`) are
+// mostly selected by share > tau.
+std::vector<bool> coherent_selection(const VoteAccumulator& votes, const GaussianScene& scene, const CentreIndex& index,
+                                     double tau, double min_total, const CoherenceOptions& options = {});
 
 }  // namespace isegman::segment

@@ -23,17 +23,6 @@ struct Line {
   }
 };
 
-TEST(Coherence, NearestNeighboursOnALine) {
-  Line l({0, 0, 0, 0, 0, 0});
-  NeighbourIndex index(l.scene);
-  auto n = index.nearest(2, 2);
-  std::sort(n.begin(), n.end());
-  EXPECT_EQ(n, (std::vector<uint32_t>{1, 3}));
-  n = index.nearest(0, 3);
-  EXPECT_EQ(n, (std::vector<uint32_t>{1, 2, 3}));  // nearest first
-  EXPECT_LE(index.nearest(0, 10).size(), 5u);     // never more than the others
-}
-
 TEST(Coherence, UndecidedSharesFollowTheirNeighbours) {
   // An object (shares 0.9) with undecided Gaussians (0.6) inside it, then a neighbour
   // (0.1) with undecided Gaussians (0.6) inside it: the same share, opposite company.
@@ -41,11 +30,11 @@ TEST(Coherence, UndecidedSharesFollowTheirNeighbours) {
   for (int i = 0; i < 20; ++i) shares.push_back(i % 4 == 2 ? 0.6 : 0.9);
   for (int i = 0; i < 20; ++i) shares.push_back(i % 4 == 2 ? 0.6 : 0.1);
   Line l(shares);
-  NeighbourIndex index(l.scene);
+  const CentreIndex index(l.scene);
   CoherenceOptions o;
   o.neighbours = 4;
   const std::vector<bool> plain = l.votes.select(0.8, 0.05);
-  const std::vector<bool> sel = coherent_selection(l.votes, index, 0.8, 0.05, o);
+  const std::vector<bool> sel = coherent_selection(l.votes, l.scene, index, 0.8, 0.05, o);
   for (int i = 0; i < 40; ++i) {
     const bool object = i < 20;
     if (shares[size_t(i)] == 0.6) EXPECT_FALSE(plain[size_t(i)]) << i;

@@ -528,8 +528,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
     if (vs.from_selection && vs.status == ViewStatus::NoOverlap) ++rep.dropped;
   next.views = std::move(fresh);
   if (o.coherence) {
-    if (!neighbours_) neighbours_ = std::make_unique<NeighbourIndex>(scene_);
-    next.selection = coherent_selection(acc, *neighbours_, o.tau, o.min_total_weight, o.coherence_options);
+    if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
+    next.selection = coherent_selection(acc, scene_, *neighbours_, o.tau, o.min_total_weight, o.coherence_options);
   } else {
     next.selection = acc.select(o.tau, o.min_total_weight);
   }

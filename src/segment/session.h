@@ -140,7 +140,7 @@ class Session {
   State state_;
   std::vector<State> history_;
   std::vector<std::pair<std::pair<int, float>, int>> peeled_;  // (view, cut depth) -> peeled view
-  std::unique_ptr<NeighbourIndex> neighbours_;  // built at the first decision that needs it
+  std::unique_ptr<CentreIndex> neighbours_;  // built at the first decision that needs it
 };
 
 }  // namespace isegman::segment

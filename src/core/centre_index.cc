@@ -1,0 +1,137 @@
+#include "core/centre_index.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+#include "core/error.h"
+
+namespace isegman {
+
+namespace {
+constexpr uint32_t kLeafSize = 16;
+}  // namespace
+
+CentreIndex::CentreIndex(const GaussianScene& scene) : pos_(scene.positions) {
+  if (scene.size() >= (size_t(1) << 32)) throw Error("neighbour index", "too many Gaussians");
+  order_.resize(scene.size());
+  for (uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
+  if (!order_.empty()) build(0, uint32_t(order_.size()));
+}
+
+int CentreIndex::build(uint32_t begin, uint32_t end) {
+  Node node;
+  node.begin = begin;
+  node.end = end;
+  for (int a = 0; a < 3; ++a) {
+    node.lo[a] = INFINITY;
+    node.hi[a] = -INFINITY;
+  }
+  for (uint32_t i = begin; i < end; ++i)
+    for (int a = 0; a < 3; ++a) {
+      node.lo[a] = std::min(node.lo[a], pos_[3 * order_[i] + a]);
+      node.hi[a] = std::max(node.hi[a], pos_[3 * order_[i] + a]);
+    }
+  const int id = int(nodes_.size());
+  nodes_.push_back(node);
+  if (end - begin > kLeafSize) {
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+      if (node.hi[a] - node.lo[a] > node.hi[axis] - node.lo[axis]) axis = a;
+    const uint32_t mid = begin + (end - begin) / 2;
+    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](uint32_t x, uint32_t y) {
+      float px = pos_[3 * x + axis], py = pos_[3 * y + axis];
+      return px < py || (px == py && x < y);
+    });
+    const int l = build(begin, mid);
+    const int r = build(mid, end);
+    nodes_[id].left = l;
+    nodes_[id].right = r;
+  }
+  return id;
+}
+
+std::vector<uint32_t> CentreIndex::nearest(const Vec3& p, int k, double max_distance) const {
+  std::vector<uint32_t> out;
+  if (k <= 0 || nodes_.empty()) return out;
+  const double limit2 = max_distance > 0 ? max_distance * max_distance : INFINITY;
+  // Max-heap of the best k (distance^2, index): the top is the worst kept.
+  using Item = std::pair<double, uint32_t>;
+  std::priority_queue<Item> best;
+  auto box_d2 = [&](const Node& n) {
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      double v = p[a] < n.lo[a] ? n.lo[a] - p[a] : (p[a] > n.hi[a] ? p[a] - n.hi[a] : 0);
+      d2 += v * v;
+    }
+    return d2;
+  };
+  auto bound = [&]() { return best.size() < size_t(k) ? limit2 : best.top().first; };
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const Node& n = nodes_[size_t(stack.back())];
+    stack.pop_back();
+    if (box_d2(n) > bound()) continue;
+    if (n.left < 0) {
+      for (uint32_t j = n.begin; j < n.end; ++j) {
+        const uint32_t i = order_[j];
+        double dx = pos_[3 * i] - p.x, dy = pos_[3 * i + 1] - p.y, dz = pos_[3 * i + 2] - p.z;
+        const Item it{dx * dx + dy * dy + dz * dz, i};
+        if (it.first > limit2) continue;
+        if (best.size() < size_t(k)) best.push(it);
+        else if (it < best.top()) {
+          best.pop();
+          best.push(it);
+        }
+      }
+    } else {
+      // Visit the nearer child first (pushed last).
+      const Node& l = nodes_[size_t(n.left)];
+      const Node& r = nodes_[size_t(n.right)];
+      if (box_d2(l) <= box_d2(r)) {
+        stack.push_back(n.right);
+        stack.push_back(n.left);
+      } else {
+        stack.push_back(n.left);
+        stack.push_back(n.right);
+      }
+    }
+  }
+  out.resize(best.size());
+  for (size_t j = out.size(); j-- > 0;) {
+    out[j] = best.top().second;
+    best.pop();
+  }
+  return out;
+}
+
+std::vector<uint32_t> CentreIndex::within(const Vec3& p, double radius) const {
+  std::vector<uint32_t> out;
+  if (nodes_.empty() || !(radius >= 0)) return out;
+  const double r2 = radius * radius;
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const Node& n = nodes_[size_t(stack.back())];
+    stack.pop_back();
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double v = p[a] < n.lo[a] ? n.lo[a] - p[a] : (p[a] > n.hi[a] ? p[a] - n.hi[a] : 0);
+      d2 += v * v;
+    }
+    if (d2 > r2) continue;
+    if (n.left < 0) {
+      for (uint32_t j = n.begin; j < n.end; ++j) {
+        const uint32_t i = order_[j];
+        const double dx = pos_[3 * i] - p.x, dy = pos_[3 * i + 1] - p.y, dz = pos_[3 * i + 2] - p.z;
+        if (dx * dx + dy * dy + dz * dz <= r2) out.push_back(i);
+      }
+    } else {
+      stack.push_back(n.left);
+      stack.push_back(n.right);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace isegman

@@ -1,0 +1,33 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/math.h"
+#include "core/scene.h"
+
+namespace isegman {
+
+// Nearest Gaussian centres (a kd-tree): the k nearest of a point within a distance,
+// nearest first (ties by index), or every centre within a radius. Grow/shrink of a
+// selection and the neighbour coherence of segmentation are built on it.
+class CentreIndex {
+ public:
+  explicit CentreIndex(const GaussianScene& scene);
+  std::vector<uint32_t> nearest(const Vec3& p, int k, double max_distance) const;
+  // Every centre within `radius` of p (boundary included), in index order.
+  std::vector<uint32_t> within(const Vec3& p, double radius) const;
+
+ private:
+  struct Node {
+    float lo[3], hi[3];
+    uint32_t begin, end;   // range in order_
+    int32_t left = -1, right = -1;
+  };
+  int build(uint32_t begin, uint32_t end);
+  std::vector<float> pos_;
+  std::vector<uint32_t> order_;
+  std::vector<Node> nodes_;
+};
+
+}  // namespace isegman
