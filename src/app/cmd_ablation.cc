@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <set>
 
 #include "app/args.h"
@@ -17,6 +18,7 @@
 #include "app/hard_scenes.h"
 #include "app/segment_args.h"
 #include "core/error.h"
+#include "io/scene_loader.h"
 #include "io/image_io.h"
 #include "segment/evaluation.h"
 #include "segment/overlay.h"
@@ -53,13 +55,15 @@ int run_eval_ablation(const Args& args) {
       {"paper: hybrid + overlap IIM", [](segment::SessionOptions& o) {
          o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
          o.selection_prompt_rounds = 0;
-         o.see_through = o.coherence = false;
+         o.see_through = o.coherence = o.centre_rule.enabled = false;
          o.propagation.hidden_fallback = true;
        }},
       {"- depth layers", [](segment::SessionOptions& o) { o.depth_layers = false; }},
       {"- local depth layers", [](segment::SessionOptions& o) { o.layer_options.region = 0; }},
+      {"- Gaussian depth extents", [](segment::SessionOptions& o) { o.layer_options.extent_sigmas = 0; }},
       {"- see through occluders", [](segment::SessionOptions& o) { o.see_through = false; }},
       {"- neighbour coherence", [](segment::SessionOptions& o) { o.coherence = false; }},
+      {"- centre evidence", [](segment::SessionOptions& o) { o.centre_rule.enabled = false; }},
       {"- agreement IIM", [](segment::SessionOptions& o) { o.agreement_inspection = false; }},
       {"- candidate choice", [](segment::SessionOptions& o) { o.choose_candidate = false; }},
       {"- selection prompts", [](segment::SessionOptions& o) { o.selection_prompt_rounds = 0; }},
@@ -83,7 +87,28 @@ int run_eval_ablation(const Args& args) {
   for (const EvalScene& s : scenes)
     for (const EvalTaskSpec& t : s.tasks)
       if (only.empty() || t.name.find(only) != std::string::npos) tasks.push_back({&s, &t});
-  if (tasks.empty()) throw Error("--only '" + only + "' matches no task");
+  // Tasks on the real fixture scenes (masks made by hand, eval/fixture_tasks): scored on
+  // their masks; skipped with a message when the fixtures are not beside the project.
+  std::vector<segment::EvalTask> fixture_tasks;
+  std::map<std::string, SceneBundle> fixture_scenes;
+  {
+    namespace fs = std::filesystem;
+    const std::string task_dir = args.get("fixture-tasks", "eval/fixture_tasks");
+    const std::string fixtures = args.get("fixtures", "../shared/fixtures");
+    std::error_code ec;
+    if (task_dir == "none") {
+    } else if (!fs::is_directory(task_dir, ec)) {
+      std::printf("fixture tasks skipped: no folder %s (--fixture-tasks DIR)\n", task_dir.c_str());
+    } else if (!fs::is_directory(fixtures, ec)) {
+      std::printf("fixture tasks skipped: no fixtures at %s (--fixtures DIR)\n", fixtures.c_str());
+    } else {
+      for (auto& t : segment::find_tasks(task_dir, fixtures))
+        if (only.empty() || t.name.find(only) != std::string::npos) fixture_tasks.push_back(std::move(t));
+      for (const auto& t : fixture_tasks)
+        if (!fixture_scenes.count(t.scene_dir)) fixture_scenes.emplace(t.scene_dir, load_scene(t.scene_dir));
+    }
+  }
+  if (tasks.empty() && fixture_tasks.empty()) throw Error("--only '" + only + "' matches no task");
   if (args.has("preview")) {  // the clicked view of every task: the object tinted, the click in red
     namespace fs = std::filesystem;
     const fs::path dir = args.get("preview");
@@ -118,10 +143,15 @@ int run_eval_ablation(const Args& args) {
   for (const auto& [s, t] : tasks)
     std::printf("| %s | %s | %zu | %zu |\n", t->name.c_str(), t->kind.c_str(), s->scene.bundle.gaussians.size(),
                 s->scene.bundle.cameras.size());
+  for (const auto& t : fixture_tasks)
+    std::printf("| %s | %s (real capture, %zu hand-made masks) | %zu | %zu |\n", t.name.c_str(), t.kind.c_str(),
+                t.masks.size(), fixture_scenes.at(t.scene_dir).gaussians.size(),
+                fixture_scenes.at(t.scene_dir).cameras.size());
   std::printf("\n| configuration | mIoU | min | mAcc | interaction |");
   for (const auto& [s, t] : tasks) std::printf(" %s |", t->name.c_str());
+  for (const auto& t : fixture_tasks) std::printf(" %s |", t.name.c_str());
   std::printf("\n|---|---|---|---|---|");
-  for (size_t i = 0; i < tasks.size(); ++i) std::printf("---|");
+  for (size_t i = 0; i < tasks.size() + fixture_tasks.size(); ++i) std::printf("---|");
   std::printf("\n");
   std::fflush(stdout);
   for (size_t ci = 0; ci < configs.size(); ++ci) {
@@ -152,7 +182,31 @@ int run_eval_ablation(const Args& args) {
         }
       }
     }
-    const double k = double(tasks.size());
+    for (const auto& t : fixture_tasks) {
+      const SceneBundle& b = fixture_scenes.at(t.scene_dir);
+      const Camera* cam = find_camera(b.cameras, t.view);
+      if (!cam) throw Error(t.dir + "/prompts.json", "view '" + t.view + "' is not a camera of the scene");
+      segment::PipelineTimings tm;
+      auto session = segment::segment_from_prompts(b, int(cam - b.cameras.data()), t.clicks, sam, so, setup.views,
+                                                   setup.views_spec, &tm);
+      const segment::TaskResult r = segment::score_task(t, b, session->selection(), so.threads);
+      per.push_back(r.iou);
+      miou += r.iou;
+      macc += r.accuracy;
+      worst = std::min(worst, r.iou);
+      ms += tm.ms_interaction();
+      if (!overlays.empty() && ci == 0) {
+        namespace fs = std::filesystem;
+        const fs::path dir = fs::path(overlays) / t.name;
+        fs::create_directories(dir);
+        for (size_t k = 0; k < session->views().size(); ++k) {
+          const auto& v = session->views()[k];
+          write_png((dir / (v.name + ".png")).string(),
+                    segment::make_overlay(v.rgb, session->view_states()[k], session->selection_coverage(int(k))));
+        }
+      }
+    }
+    const double k = double(tasks.size() + fixture_tasks.size());
     std::printf("| %s | %.2f | %.1f | %.2f | %.2f s |", configs[ci].label.c_str(), 100 * miou / k, 100 * worst,
                 100 * macc / k, ms / k / 1000);
     for (double p : per) std::printf(" %.1f |", 100 * p);
@@ -164,7 +218,8 @@ int run_eval_ablation(const Args& args) {
 
 int run_ablation(const std::vector<std::string>& argv) {
   std::set<std::string> values = segment_value_flags();
-  values.insert({"density", "width", "height", "set", "only", "configs", "overlays", "preview"});
+  values.insert({"density", "width", "height", "set", "only", "configs", "overlays", "preview", "fixtures",
+                 "fixture-tasks"});
   Args args(argv, values, segment_switch_flags());
   const std::string set = args.get("set", "eval");
   if (set == "eval") return run_eval_ablation(args);
@@ -230,12 +285,16 @@ int run_ablation(const std::vector<std::string>& argv) {
 
 RegisterCommand reg("ablation", "measure the segmentation's design choices on synthetic scenes with known labels",
                     "usage: isegman ablation [--set eval|demo] [--only TEXT] [--configs 0,2,...] [--overlays DIR]\n"
-                    "                        [--density D] [--width W --height H] [segment options]\n"
+                    "                        [--density D] [--width W --height H] [--fixtures DIR]\n"
+                    "                        [--fixture-tasks DIR|none] [segment options]\n"
                     "  --set eval (default): the evaluation set of hard cases (gaps, occluders, thin, tiny and\n"
                     "  compound objects, coarse Gaussians, clean orbit objects), every addition beyond the paper\n"
                     "  switched off in turn; --set demo: the demo scene with propagation modes, inspection and\n"
                     "  view sampling. Prints Markdown tables: IoU of the rendered selection vs the true object in\n"
-                    "  every camera that sees it, per task and averaged, and the time per interaction.",
+                    "  every camera that sees it, per task and averaged, and the time per interaction. The eval\n"
+                    "  set also scores the tasks in --fixture-tasks (default eval/fixture_tasks) on the real scenes\n"
+                    "  under --fixtures (default ../shared/fixtures) against their hand-made masks; skipped with a\n"
+                    "  message when either folder is missing.",
                     run_ablation);
 
 }  // namespace

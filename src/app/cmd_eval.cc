@@ -16,10 +16,10 @@ namespace {
 
 int run_eval(const std::vector<std::string>& argv) {
   std::set<std::string> values = segment_value_flags();
-  values.insert("json");
+  values.insert({"json", "fixtures"});
   Args args(argv, values, segment_switch_flags());
   const std::string path = args.positional(0, "<task dir or folder of task dirs>");
-  std::vector<segment::EvalTask> tasks = segment::find_tasks(path);
+  std::vector<segment::EvalTask> tasks = segment::find_tasks(path, args.get("fixtures", "../shared/fixtures"));
   SegmentSetup setup = parse_segment_setup(args);
   if (args.has("json")) {  // checked before the tasks run: never one of their files
     OutputPlan plan;
@@ -67,7 +67,8 @@ int run_eval(const std::vector<std::string>& argv) {
 RegisterCommand reg("eval", "score segmentation on tasks with ground-truth masks (mIoU, mAcc, timings)",
                     std::string("usage: isegman eval <task dir | folder of task dirs> [--json FILE] [options]\n"
                                 "  <task>/scene/ (scene dir), <task>/prompts.json {\"view\", \"positive\", \"negative\"},\n"
-                                "  <task>/masks/<img_name>.png (ground truth, non-zero = object; any resolution)\n") +
+                                "  <task>/masks/<img_name>.png (ground truth, non-zero = object; any resolution)\n"
+                                "  --fixtures DIR: root of the scenes tasks name by \"fixture_scene\" (default ../shared/fixtures)\n") +
                         kSegmentOptionsHelp,
                     run_eval);
 

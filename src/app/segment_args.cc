@@ -22,6 +22,7 @@ const char* const kSegmentOptionsHelp =
     "  --global-depth-layers         depth layers over the whole mask instead of per region\n"
     "  --no-see-through              segment what a click sees through gaps as the render shows it\n"
     "  --no-coherence                select by vote share > tau alone (no nearest-neighbour decision)\n"
+    "  --no-centre-rule              no selection of shares in (0.5, tau] by their centres lying in the masks\n"
     "  --overlap-inspection          IIM accepts a mask that merely overlaps the selection\n"
     "  --no-candidate-choice         always take SAM's top-scored mask\n"
     "  --selection-prompts N         rounds prompting views no click reached (default 2, 0 = off)\n"
@@ -40,7 +41,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule",
                                           "no-candidate-choice", "hidden-fallback",
                                           "sam-negatives"};
   return f;
@@ -66,6 +67,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.depth_layers = !paper && !args.has("no-depth-layers");
   if (args.has("global-depth-layers")) s.session.layer_options.region = 0;
   s.session.coherence = !paper && !args.has("no-coherence");
+  s.session.centre_rule.enabled = !paper && !args.has("no-centre-rule");
   s.session.see_through = !paper && !args.has("no-see-through");
   s.session.agreement_inspection = !paper && !args.has("overlap-inspection");
   s.session.choose_candidate = !paper && !args.has("no-candidate-choice");

@@ -3,8 +3,9 @@
 namespace isegman::segment {
 
 std::vector<bool> coherent_selection(const VoteAccumulator& votes, const GaussianScene& scene, const CentreIndex& index,
-                                     double tau, double min_total, const CoherenceOptions& o) {
-  std::vector<bool> strong = votes.select(tau, min_total);
+                                     double tau, double min_total, const CoherenceOptions& o,
+                                     const CentreRule& centre) {
+  std::vector<bool> strong = votes.select(tau, min_total, centre);
   std::vector<bool> out = strong;
   const std::vector<bool> observed = votes.select(-1.0, min_total);
   const std::vector<float> share = votes.ratios();

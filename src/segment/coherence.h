@@ -22,8 +22,9 @@ struct CoherenceOptions {
 
 // The selection: share > tau (and enough weight), plus the undecided Gaussians (share in
 // (tau_low, tau]) whose observed k nearest Gaussians (`index`, built over `scene`) are
-// mostly selected by share > tau.
+// mostly selected by share > tau (or by the centre rule, votes.h).
 std::vector<bool> coherent_selection(const VoteAccumulator& votes, const GaussianScene& scene, const CentreIndex& index,
-                                     double tau, double min_total, const CoherenceOptions& options = {});
+                                     double tau, double min_total, const CoherenceOptions& options = {},
+                                     const CentreRule& centre = {});
 
 }  // namespace isegman::segment

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/projection.h"
+
 namespace isegman::segment {
 
 std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std::vector<double>& weight,
-                                     const DepthLayerOptions& o) {
+                                     const DepthLayerOptions& o, const std::vector<float>* extent) {
   std::vector<DepthLayer> layers;
   double total = 0, lo = 1e300, hi = 0;
   for (size_t i = 0; i < depth.size(); ++i) {
@@ -23,6 +25,15 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
   auto bin_of = [&](double z) { return std::clamp(int((std::log(z) - std::log(lo)) / step), 0, bins - 1); };
   for (size_t i = 0; i < depth.size(); ++i)
     if (depth[i] > 0 && weight[i] > 0) hist[size_t(bin_of(depth[i]))] += weight[i];
+  // Bins inside the depth extent of a Gaussian that matters are not empty either.
+  std::vector<char> covered(size_t(bins), 0);
+  if (extent && o.extent_sigmas > 0)
+    for (size_t i = 0; i < depth.size(); ++i) {
+      if (!(depth[i] > 0) || weight[i] < o.empty_share * total) continue;
+      const double r = o.extent_sigmas * double((*extent)[i]);
+      const int b0 = bin_of(std::max(lo, double(depth[i]) - r)), b1 = bin_of(std::min(hi, double(depth[i]) + r));
+      for (int b = b0; b <= b1; ++b) covered[size_t(b)] = 1;
+    }
   const int gap_bins = std::max(1, int(std::ceil(std::log1p(o.min_gap) / step)));
   int start = -1, last = -1;
   double w = 0;
@@ -30,7 +41,7 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
     layers.push_back({lo * std::exp(start * step), lo * std::exp((last + 1) * step), w / total});
   };
   for (int b = 0; b < bins; ++b) {
-    if (hist[size_t(b)] < o.empty_share * total) continue;
+    if (hist[size_t(b)] < o.empty_share * total && !covered[size_t(b)]) continue;
     if (start >= 0 && b - last - 1 >= gap_bins) {
       close();
       start = -1;
@@ -44,6 +55,17 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
   return layers;
 }
 
+float depth_extent(const GaussianScene& scene, const Camera& camera, size_t g) {
+  if (scene.scales.size() < 3 * (g + 1) || scene.rotations.size() < 4 * (g + 1)) return 0.f;  // centres only
+  float cov[6];
+  covariance_3d(&scene.scales[3 * g], &scene.rotations[4 * g], cov);
+  // Variance of camera z = a^T Sigma a, a = the camera's z axis in world coordinates.
+  const double a[3] = {camera.R.m[2][0], camera.R.m[2][1], camera.R.m[2][2]};
+  const double v = a[0] * a[0] * cov[0] + a[1] * a[1] * cov[3] + a[2] * a[2] * cov[5] +
+                   2 * (a[0] * a[1] * cov[1] + a[0] * a[2] * cov[2] + a[1] * a[2] * cov[4]);
+  return float(std::sqrt(std::max(0.0, v)));
+}
+
 namespace {
 
 int layer_of(const std::vector<DepthLayer>& layers, double z) {
@@ -55,7 +77,8 @@ int layer_of(const std::vector<DepthLayer>& layers, double z) {
 // Per-region decision (see the header). keep[k] says whether mask entry k stays positive;
 // false when the selection has no weight in the mask (nothing to decide by).
 bool keep_local_layers(const Camera& camera, const std::vector<Vec3>& centre, const std::vector<float>& depth,
-                       const std::vector<double>& weight, const std::vector<char>& selected,
+                       const std::vector<float>& extent, const std::vector<double>& weight,
+                       const std::vector<char>& selected,
                        const DepthLayerOptions& o, std::vector<char>& keep) {
   const int R = o.region;
   const int gx = std::max(1, (camera.width + R - 1) / R), gy = std::max(1, (camera.height + R - 1) / R);
@@ -75,13 +98,14 @@ bool keep_local_layers(const Camera& camera, const std::vector<Vec3>& centre, co
   keep.assign(centre.size(), 0);
   for (size_t r = 0; r < members.size(); ++r) {
     if (members[r].empty()) continue;
-    std::vector<float> z;
+    std::vector<float> z, e;
     std::vector<double> w;
     for (size_t k : members[r]) {
       z.push_back(depth[k]);
+      e.push_back(extent[k]);
       w.push_back(weight[k]);
     }
-    layers[r] = depth_layers(z, w, o);
+    layers[r] = depth_layers(z, w, o, &e);
     std::vector<double> sel(layers[r].size(), 0.0), all(layers[r].size(), 0.0);
     for (size_t k : members[r]) {
       const int l = layer_of(layers[r], depth[k]);
@@ -148,20 +172,21 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
   neutral = ViewVotes{};
   const size_t n = positive.index.size();
   std::vector<Vec3> centre(n);
-  std::vector<float> depth(n);
+  std::vector<float> depth(n), extent(n);
   std::vector<double> weight(n);
   std::vector<char> selected(n, 0);
   for (size_t k = 0; k < n; ++k) {
     const uint32_t g = positive.index[k];
     centre[k] = Vec3{scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]};
     depth[k] = float(camera.world_to_camera(centre[k]).z);
+    extent[k] = depth_extent(scene, camera, g);
     weight[k] = double(positive.weight[k]);
     if (selection) selected[k] = (*selection)[g];
   }
-  const std::vector<DepthLayer> layers = depth_layers(depth, weight, o);
+  const std::vector<DepthLayer> layers = depth_layers(depth, weight, o, &extent);
   rep.layers = int(layers.size());
   std::vector<char> keep;
-  if (selection && o.region > 0 && keep_local_layers(camera, centre, depth, weight, selected, o, keep)) {
+  if (selection && o.region > 0 && keep_local_layers(camera, centre, depth, extent, weight, selected, o, keep)) {
     rep.local = true;
   } else {
     if (layers.size() <= 1) {

@@ -27,6 +27,11 @@ struct DepthLayerOptions {
   double keep_share = 0.3;    // a local layer is kept when this share of it is selected
   double margin = 0.05;       // relative depth margin around the selection's local range
   int reach = 2;              // regions farther than this from the selection's stay neutral
+  // A Gaussian occupies the depth range centre +- extent_sigmas standard deviations along the
+  // view axis, not only its centre's bin: a coarse surface of few large Gaussians (a far
+  // pillar in a real capture) has empty bins between its centres that are no real gap.
+  // Only Gaussians holding at least empty_share of the weight fill bins this way. 0: centres.
+  double extent_sigmas = 1.0;
 };
 
 struct DepthLayer {
@@ -34,9 +39,14 @@ struct DepthLayer {
   double weight = 0;         // share of the mask's blending weight
 };
 
-// Layers of (depth, weight) samples, near to far.
+// Layers of (depth, weight) samples, near to far. `extent` (optional, one per sample): the
+// standard deviation of the sample's depth (see extent_sigmas).
 std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std::vector<double>& weight,
-                                     const DepthLayerOptions& options = {});
+                                     const DepthLayerOptions& options = {},
+                                     const std::vector<float>* extent = nullptr);
+
+// Standard deviation of Gaussian g's camera-space depth (its 3D covariance along the view axis).
+float depth_extent(const GaussianScene& scene, const Camera& camera, size_t g);
 
 struct GateReport {
   int layers = 0;            // layers the mask's content splits into

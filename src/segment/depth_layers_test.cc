@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace isegman::segment {
 namespace {
 
@@ -19,6 +21,43 @@ TEST(DepthLayers, SplitsAtAnEmptyDepthRangeAndBridgesSmallOnes) {
   EXPECT_NEAR(layers[0].weight + layers[1].weight, 1.0, 1e-9);
   std::printf("[ layers ] %.2f-%.2f (%.0f%%), %.2f-%.2f (%.0f%%)\n", layers[0].near, layers[0].far,
               100 * layers[0].weight, layers[1].near, layers[1].far, 100 * layers[1].weight);
+}
+
+TEST(DepthLayers, LargeGaussiansBridgeTheEmptyBinsBetweenTheirCentresButNotARealGap) {
+  // A coarse far surface: five big Gaussians at 10.0-10.8 whose centres leave 5 % gaps
+  // (more than min_gap), each 0.3 deep (sd); a thin bar at 6.0 well in front of them.
+  std::vector<float> depth = {6.0f, 6.01f, 10.0f, 10.5f, 11.0f, 11.55f, 12.1f};
+  std::vector<double> weight = {2, 2, 1, 1, 1, 1, 1};
+  std::vector<float> extent = {0.01f, 0.01f, 0.3f, 0.3f, 0.3f, 0.3f, 0.3f};
+  const auto by_centres = depth_layers(depth, weight);
+  const auto by_extents = depth_layers(depth, weight, {}, &extent);
+  EXPECT_GE(by_centres.size(), 4u);  // the surface falls apart between its centres
+  ASSERT_EQ(by_extents.size(), 2u);  // one surface, and the bar in front of it
+  EXPECT_NEAR(by_extents[0].far, 6.01, 0.07);
+  EXPECT_NEAR(by_extents[1].near, 10.0 - 0.3, 0.11);  // the layer spans the extents too
+  EXPECT_NEAR(by_extents[1].weight, 5.0 / 9.0, 1e-9);
+  DepthLayerOptions centres_only;
+  centres_only.extent_sigmas = 0;
+  EXPECT_EQ(depth_layers(depth, weight, centres_only, &extent).size(), by_centres.size());
+  // A Gaussian below the empty share does not bridge: noise cannot join two layers.
+  std::vector<float> z2 = {4.0f, 8.0f, 6.0f};
+  std::vector<double> w2 = {1000, 1000, 0.1};
+  std::vector<float> e2 = {0.01f, 0.01f, 3.0f};
+  EXPECT_EQ(depth_layers(z2, w2, {}, &e2).size(), 2u);
+}
+
+TEST(DepthLayers, DepthExtentIsTheSpreadAlongTheViewAxis) {
+  GaussianScene scene;
+  scene.positions = {0, 0, 5, 0, 0, 5};
+  scene.opacity = {0, 0};
+  // A disc thin along z (0.01) and wide in x, y (0.5), and the same disc turned 90 degrees
+  // about y, so its 0.5 extent points along the view axis.
+  scene.scales = {std::log(0.5f), std::log(0.5f), std::log(0.01f), std::log(0.5f), std::log(0.5f), std::log(0.01f)};
+  const float h = std::sqrt(0.5f);
+  scene.rotations = {1, 0, 0, 0, h, 0, h, 0};
+  Camera cam = Camera::look_at({0, 0, 0}, {0, 0, 1}, {0, -1, 0}, 64, 64, 60);
+  EXPECT_NEAR(depth_extent(scene, cam, 0), 0.01, 1e-4);
+  EXPECT_NEAR(depth_extent(scene, cam, 1), 0.5, 1e-4);
 }
 
 TEST(DepthLayers, ContinuousDepthIsOneLayer) {

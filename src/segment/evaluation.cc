@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 
 namespace isegman::segment {
 
-EvalTask read_task(const std::string& dir) {
+EvalTask read_task(const std::string& dir, const std::string& fixtures) {
   EvalTask t;
   t.dir = dir;
   t.name = fs::path(dir).filename().string();
@@ -31,6 +31,22 @@ EvalTask read_task(const std::string& dir) {
   if (!j.is_object() || !j.contains("view") || !j["view"].is_string())
     throw Error(prompts, "needs a \"view\" string (the img_name of the clicked camera)");
   t.view = j["view"].get<std::string>();
+  if (j.contains("kind")) {
+    if (!j["kind"].is_string()) throw Error(prompts, "\"kind\" must be a string");
+    t.kind = j["kind"].get<std::string>();
+  }
+  if (j.contains("fixture_scene")) {
+    if (!j["fixture_scene"].is_string()) throw Error(prompts, "\"fixture_scene\" must be a path string");
+    t.fixture_scene = j["fixture_scene"].get<std::string>();
+    const fs::path rel(t.fixture_scene);
+    if (rel.is_absolute() || t.fixture_scene.find("..") != std::string::npos)
+      throw Error(prompts, "\"fixture_scene\" must be a relative path inside the fixtures root");
+    std::error_code ec;
+    if (fixtures.empty() || !fs::is_directory(fs::path(fixtures) / rel, ec))
+      throw Error(prompts, "needs the fixture scene '" + t.fixture_scene + "' under the fixtures root " +
+                               (fixtures.empty() ? std::string("(none given: --fixtures DIR)") : "'" + fixtures + "'"));
+    t.scene_dir = (fs::path(fixtures) / rel).string();
+  }
   for (const char* key : {"positive", "negative"}) {
     if (!j.contains(key)) continue;
     if (!j[key].is_array()) throw Error(prompts, std::string("\"") + key + "\" must be a list of [x, y]");
@@ -60,9 +76,9 @@ EvalTask read_task(const std::string& dir) {
   return t;
 }
 
-std::vector<EvalTask> find_tasks(const std::string& path) {
+std::vector<EvalTask> find_tasks(const std::string& path, const std::string& fixtures) {
   std::error_code ec;
-  if (fs::exists(fs::path(path) / "prompts.json", ec)) return {read_task(path)};
+  if (fs::exists(fs::path(path) / "prompts.json", ec)) return {read_task(path, fixtures)};
   if (!fs::is_directory(path, ec)) throw Error(path, "not a task directory or a folder of task directories");
   std::vector<std::string> dirs;
   for (const auto& e : fs::directory_iterator(path))
@@ -70,7 +86,7 @@ std::vector<EvalTask> find_tasks(const std::string& path) {
   std::sort(dirs.begin(), dirs.end());
   if (dirs.empty()) throw Error(path, "holds no task directories (each needs prompts.json, scene/ and masks/)");
   std::vector<EvalTask> tasks;
-  for (const auto& d : dirs) tasks.push_back(read_task(d));
+  for (const auto& d : dirs) tasks.push_back(read_task(d, fixtures));
   return tasks;
 }
 
@@ -127,17 +143,23 @@ TaskResult evaluate_task(const EvalTask& task, std::shared_ptr<const models::Sam
   SceneBundle b = load_scene(task.scene_dir);
   const Camera* cam = find_camera(b.cameras, task.view);
   if (!cam) throw Error(task.dir + "/prompts.json", "view '" + task.view + "' is not a camera of the scene");
+  PipelineTimings timings;
+  auto session = segment_from_prompts(b, int(cam - b.cameras.data()), task.clicks, sam, so, vo, views_spec,
+                                      &timings, progress);
+  TaskResult r = score_task(task, b, session->selection(), so.threads);
+  r.timings = timings;
+  return r;
+}
+
+TaskResult score_task(const EvalTask& task, const SceneBundle& b, const std::vector<bool>& sel, int threads) {
   TaskResult r;
   r.name = task.name;
-  auto session = segment_from_prompts(b, int(cam - b.cameras.data()), task.clicks, sam, so, vo, views_spec,
-                                      &r.timings, progress);
-  const std::vector<bool>& sel = session->selection();
   r.selected = size_t(std::count(sel.begin(), sel.end(), true));
   for (const auto& [view, path] : task.masks) {
     const Camera* c = find_camera(b.cameras, view);
     if (!c) throw Error(path, "mask for '" + view + "', which is not a camera of the scene");
     Image truth = read_image(path);
-    MaskScore s = score_mask(selection_mask(b.gaussians, *c, sel, truth.width, truth.height, so.threads), truth);
+    MaskScore s = score_mask(selection_mask(b.gaussians, *c, sel, truth.width, truth.height, threads), truth);
     s.view = view;
     r.masks.push_back(s);
     r.iou += s.iou;

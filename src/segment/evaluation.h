@@ -2,7 +2,9 @@
 //   <task>/scene/               a scene directory (PLY + cameras.json)
 //   <task>/prompts.json         {"view": "<img_name>", "positive": [[x, y], ...], "negative": [...]}
 //   <task>/masks/<img_name>.png ground truth (non-zero = object), any resolution
-// The selection is made from the prompts alone; masks are read only to score it.
+// Instead of scene/, prompts.json may name a scene under a fixtures root ("fixture_scene":
+// "fern/scene"), so tasks on shared scenes need no copy of them; "kind" says what the task
+// tests. The selection is made from the prompts alone; masks are read only to score it.
 #pragma once
 
 #include <string>
@@ -14,14 +16,17 @@
 namespace isegman::segment {
 
 struct EvalTask {
-  std::string name, dir, scene_dir, view;
+  std::string name, dir, scene_dir, view, kind;
+  std::string fixture_scene;  // the scene's path under the fixtures root, when it is not <task>/scene
   std::vector<Click> clicks;  // pixel centres of prompts.json's [x, y]
   std::vector<std::pair<std::string, std::string>> masks;  // (camera name, mask file)
 };
 
 // A task directory, or a folder whose sub-directories are tasks (sorted by name).
-std::vector<EvalTask> find_tasks(const std::string& path);
-EvalTask read_task(const std::string& dir);
+// `fixtures` is the root that "fixture_scene" paths are resolved against; a task naming one
+// under an empty or missing root is an error that names the task and the root.
+std::vector<EvalTask> find_tasks(const std::string& path, const std::string& fixtures = "");
+EvalTask read_task(const std::string& dir, const std::string& fixtures = "");
 
 struct MaskScore {
   std::string view;
@@ -48,6 +53,10 @@ Image selection_mask(const GaussianScene& scene, const Camera& camera, const std
 // covers at least `min_pixels`.
 MaskScore score_selection(const GaussianScene& scene, const std::vector<Camera>& cameras,
                           const std::vector<bool>& truth, const std::vector<bool>& selection, int min_pixels = 50);
+
+// Scores a selection already made on the task's scene against its masks (ground truth).
+TaskResult score_task(const EvalTask& task, const SceneBundle& scene, const std::vector<bool>& selection,
+                      int threads = 0);
 
 TaskResult evaluate_task(const EvalTask& task, std::shared_ptr<const models::SamModel> sam,
                          const SessionOptions& session_options, const ViewOptions& view_options,

@@ -406,7 +406,11 @@ RoundReport Session::run_round(State& next, const State& prev) {
       vs.depth_layers = g.layers;
       vs.gated_share = g.gated_share;
     }
-    acc.add(vs.positive, view.all_votes, +1, &vs.neutral);
+    ViewVotes centred;
+    if (o.centre_rule.enabled)
+      centred = centred_votes(scene_, view.camera, mask_image(vs.mask, view.camera.width, view.camera.height),
+                              view.depth, vs.positive, view.all_votes);
+    acc.add(vs.positive, view.all_votes, +1, &vs.neutral, &centred);
     vs.status = ViewStatus::Accepted;
     ++rep.accepted;
   };
@@ -424,7 +428,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     bool have_raw = false;
     const bool several = r.candidates.size() > 1 && o.choose_candidate;
     if (inspect || (!first && several)) {
-      current = acc.select(o.tau, o.min_total_weight);
+      current = acc.select(o.tau, o.min_total_weight, o.centre_rule);
       const std::vector<float> values = as_values(current);
       if (several) {  // the coverage decides the candidate, then the candidate's votes
         coverage = selection_values_coverage(scene_, views_[k], values, o.threads);
@@ -479,7 +483,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
 
   // 4. Views no click reached: prompt SAM from the selection rendered in them.
   for (int round = 0; round < o.selection_prompt_rounds && !first; ++round) {
-    const std::vector<bool> current = acc.select(o.tau, o.min_total_weight);
+    const std::vector<bool> current = acc.select(o.tau, o.min_total_weight, o.centre_rule);
     const std::vector<float> values = as_values(current);
     std::vector<size_t> which;
     std::vector<std::vector<models::Click>> prompts;
@@ -529,9 +533,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
   next.views = std::move(fresh);
   if (o.coherence) {
     if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
-    next.selection = coherent_selection(acc, scene_, *neighbours_, o.tau, o.min_total_weight, o.coherence_options);
+    next.selection = coherent_selection(acc, scene_, *neighbours_, o.tau, o.min_total_weight, o.coherence_options, o.centre_rule);
   } else {
-    next.selection = acc.select(o.tau, o.min_total_weight);
+    next.selection = acc.select(o.tau, o.min_total_weight, o.centre_rule);
   }
   rep.selected = size_t(std::count(next.selection.begin(), next.selection.end(), true));
   rep.views_segmented = segmented;

@@ -53,6 +53,9 @@ struct SessionOptions {
   // Shares between tau_low and tau decided by the k nearest neighbours (coherence.h).
   bool coherence = true;
   CoherenceOptions coherence_options;
+  // Shares between tau_low and tau also selected when the Gaussian's centre lies inside
+  // most masks that see it (votes.h: the outline Gaussians of thin, coarse objects).
+  CentreRule centre_rule{true};
   bool see_through = true;
   SeeThroughOptions see_through_options;
   ViewOptions see_through_views;  // how those renders are made and encoded (cache, threads)

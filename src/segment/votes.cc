@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "segment/depth_layers.h"
 
 namespace isegman::segment {
 namespace {
@@ -38,19 +39,47 @@ ViewVotes masked_votes(const PreparedFrame& frame, const Image& mask, int thread
   return weight_sums(frame, &mask, vote_settings(threads), values, coverage, full_coverage && values);
 }
 
-void VoteAccumulator::add(const ViewVotes& positive, const ViewVotes& total, int sign, const ViewVotes* neutral) {
+void VoteAccumulator::add(const ViewVotes& positive, const ViewVotes& total, int sign, const ViewVotes* neutral,
+                          const ViewVotes* centred) {
   for (size_t k = 0; k < positive.index.size(); ++k) positive_[positive.index[k]] += sign * positive.weight[k];
+  if (centred)
+    for (size_t k = 0; k < centred->index.size(); ++k) centred_[centred->index[k]] += sign * centred->weight[k];
   for (size_t k = 0; k < total.index.size(); ++k) total_[total.index[k]] += sign * total.weight[k];
   if (neutral)
     for (size_t k = 0; k < neutral->index.size(); ++k) total_[neutral->index[k]] -= sign * neutral->weight[k];
 }
 
-std::vector<bool> VoteAccumulator::select(double tau, double min_total) const {
+std::vector<bool> VoteAccumulator::select(double tau, double min_total, const CentreRule& centre) const {
   std::vector<bool> sel(total_.size(), false);
   const int64_t min_fixed = int64_t(std::ceil(min_total * kVoteScale));
-  for (size_t j = 0; j < total_.size(); ++j)
-    sel[j] = total_[j] > 0 && total_[j] >= min_fixed && double(positive_[j]) > tau * double(total_[j]);
+  for (size_t j = 0; j < total_.size(); ++j) {
+    if (!(total_[j] > 0 && total_[j] >= min_fixed)) continue;
+    const double a = double(total_[j]), p = double(positive_[j]);
+    sel[j] = p > tau * a ||
+             (centre.enabled && p > centre.tau_low * a && double(centred_[j]) > centre.min_centred * a);
+  }
   return sel;
+}
+
+ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const Image& mask, const Image& depth,
+                        const ViewVotes& positive, const ViewVotes& total) {
+  if (depth.width != mask.width || depth.height != mask.height) throw Error("centred_votes: depth and mask sizes differ");
+  ViewVotes out;
+  size_t t = 0;
+  for (size_t k = 0; k < positive.index.size(); ++k) {
+    const uint32_t g = positive.index[k];
+    double u = 0, v = 0, z = 0;
+    if (!camera.project(scene.position(g), u, v, &z)) continue;
+    const int x = int(std::floor(u)), y = int(std::floor(v));
+    if (x < 0 || y < 0 || x >= mask.width || y >= mask.height || !(mask.at(x, y) > 0.5f)) continue;
+    const double surface = depth.at(x, y);
+    if (surface > 0 && z > surface * 1.05 + 2.0 * depth_extent(scene, camera, g)) continue;
+    while (t < total.index.size() && total.index[t] < g) ++t;
+    if (t == total.index.size() || total.index[t] != g) continue;
+    out.index.push_back(g);
+    out.weight.push_back(total.weight[t]);
+  }
+  return out;
 }
 
 std::vector<float> VoteAccumulator::ratios() const {

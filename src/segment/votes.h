@@ -33,25 +33,51 @@ ViewVotes masked_votes(const PreparedFrame& frame, const Image& mask, int thread
                        const std::vector<float>* values = nullptr, Image* coverage = nullptr,
                        bool full_coverage = false);
 
+// Centre evidence, for Gaussians on an object's outline. A coarse Gaussian of a thin object
+// (a pillar a few Gaussians wide) spills over the mask's edge in every view, so its share
+// P/A stays at 0.5-0.8, exactly like a neighbour's Gaussian that spills into the mask. What
+// tells them apart is where the Gaussian is: the object's own projects its centre inside the
+// mask. C_j sums the view totals A_jv of the views whose mask holds j's centre.
+struct CentreRule {
+  bool enabled = false;
+  double tau_low = 0.5;     // shares in (tau_low, tau] may be decided by centre evidence
+  double min_centred = 0.5; // ... when C/A exceeds this (the centre inside most masks)
+};
+
 class VoteAccumulator {
  public:
-  explicit VoteAccumulator(size_t gaussians = 0) : positive_(gaussians, 0), total_(gaussians, 0) {}
+  explicit VoteAccumulator(size_t gaussians = 0)
+      : positive_(gaussians, 0), total_(gaussians, 0), centred_(gaussians, 0) {}
   size_t size() const { return total_.size(); }
   // sign = +1 adds a view, -1 removes it again. `neutral` (optional): weights of the
-  // view's total that count neither way (depth-gated content of the mask).
-  void add(const ViewVotes& positive, const ViewVotes& total, int sign = 1, const ViewVotes* neutral = nullptr);
-  // Gaussians whose positive share P/A exceeds tau and whose total weight A is at least
+  // view's total that count neither way (depth-gated content of the mask). `centred`
+  // (optional): the view totals of the Gaussians whose centre lies inside the mask.
+  void add(const ViewVotes& positive, const ViewVotes& total, int sign = 1, const ViewVotes* neutral = nullptr,
+           const ViewVotes* centred = nullptr);
+  // Gaussians whose positive share P/A exceeds tau (or, with the centre rule, tau_low when
+  // their centre evidence C/A exceeds min_centred) and whose total weight A is at least
   // min_total (in pixel-weight units).
-  std::vector<bool> select(double tau, double min_total) const;
+  std::vector<bool> select(double tau, double min_total, const CentreRule& centre = {}) const;
   // P/A per Gaussian (0 where A is 0).
   std::vector<float> ratios() const;
   const std::vector<int64_t>& positive() const { return positive_; }
   const std::vector<int64_t>& total() const { return total_; }
-  bool operator==(const VoteAccumulator& o) const { return positive_ == o.positive_ && total_ == o.total_; }
+  const std::vector<int64_t>& centred() const { return centred_; }
+  bool operator==(const VoteAccumulator& o) const {
+    return positive_ == o.positive_ && total_ == o.total_ && centred_ == o.centred_;
+  }
 
  private:
-  std::vector<int64_t> positive_, total_;
+  std::vector<int64_t> positive_, total_, centred_;
 };
+
+// The view totals (from `total`, ascending like `positive`) of the Gaussians of `positive`
+// whose centre projects inside mask > 0.5 (the camera's resolution) and is not hidden
+// there: its depth is at most the rendered expected depth (`depth`, same size) plus a 5 %
+// margin and two of its depth standard deviations. A Gaussian behind the object (the roof
+// under a turret) has its centre inside the mask but hidden, and only its rim shows.
+ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const Image& mask, const Image& depth,
+                        const ViewVotes& positive, const ViewVotes& total);
 
 // Bounding tiles of mask > 0.5 pixels, as a tile mask for rasterize().
 std::vector<uint8_t> tiles_under_mask(const Image& mask, int grid_x, int grid_y);

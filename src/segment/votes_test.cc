@@ -86,5 +86,46 @@ TEST(Votes, AddingAndRemovingAViewIsExact) {
   EXPECT_EQ(masked_votes(f, mask, 1).weight, masked_votes(f, mask, 3).weight);
 }
 
+TEST(Votes, CentreRuleTellsAnOutlineGaussianFromASpillingNeighbour) {
+  // A thin object (a mask 3 pixels wide) drawn by one coarse Gaussian (0, sd 2 pixels,
+  // centre inside the mask) that spills over both edges: share 0.5-0.8. A neighbour's
+  // Gaussian (1) beside the strip. Gaussian 2 is larger and sits behind 0: its centre is
+  // hidden, only its rim shows, and most of that rim falls inside the mask.
+  GaussianScene g;
+  g.sh_degree = 0;
+  add_gaussian(g, {-0.015, 0, 3}, 0.06, 0.9);  // centre at x = 31.5
+  add_gaussian(g, {0.1, 0, 3}, 0.06, 0.9);     // centre at x = 35.3
+  add_gaussian(g, {-0.03, 0, 6}, 0.1, 0.9);
+  const Camera c = axis_camera();
+  PreparedFrame f = prepare_frame(g, c);
+  RenderOutput r = render(g, c);
+  Image mask(64, 32, 1);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 30; x < 33; ++x) mask.at(x, y) = 1.f;
+  ViewVotes all = total_votes(f), pos = masked_votes(f, mask);
+  const ViewVotes centred = centred_votes(g, c, mask, r.depth, pos, all);
+  ASSERT_EQ(centred.index, (std::vector<uint32_t>{0}));  // 1: centre outside; 2: centre hidden
+  for (size_t k = 0; k < all.index.size(); ++k)
+    if (all.index[k] == 0) EXPECT_EQ(centred.weight[0], all.weight[k]);  // its whole view total
+  VoteAccumulator acc(3);
+  acc.add(pos, all, 1, nullptr, &centred);
+  const auto share = acc.ratios();
+  std::printf("[ shares ] outline %.2f, neighbour %.2f, hidden %.2f\n", share[0], share[1], share[2]);
+  ASSERT_GT(share[0], 0.5);
+  ASSERT_LT(share[0], 0.8);
+  ASSERT_GT(share[2], 0.5);
+  EXPECT_FALSE(acc.select(0.8, 0.0)[0]);  // tau alone drops the outline Gaussian
+  CentreRule rule{true};
+  const auto sel = acc.select(0.8, 0.0, rule);
+  EXPECT_TRUE(sel[0]);
+  EXPECT_FALSE(sel[1]);
+  EXPECT_FALSE(sel[2]);
+  EXPECT_TRUE(acc.select(0.5, 0.0)[2]);  // a plain majority would take the hidden one in
+  // Removing the view again is exact, centre evidence included.
+  VoteAccumulator copy = acc;
+  copy.add(pos, all, -1, nullptr, &centred);
+  EXPECT_TRUE(copy == VoteAccumulator(3));
+}
+
 }  // namespace
 }  // namespace isegman::segment
