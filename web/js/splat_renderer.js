@@ -2,12 +2,14 @@
 // rasteriser stays the reference for evidence, clicked views and exports). It follows
 // the INRIA rasteriser: EWA projection with the perspective Jacobian (x/z, y/z clamped to
 // 1.3x the half field of view), +0.3 px on the 2D covariance diagonal, alpha =
-// min(0.99, o exp(-d^2/2)) cut at 1/255, base colour from the SH DC term, splats blended
-// far to near (sorted in sort_worker.js). Camera convention: OpenCV axes, p_cam = R p + t.
+// min(0.99, o exp(-d^2/2)) cut at 1/255, colour from the SH (degrees 0-3, evaluated per
+// splat and view in sort_worker.js), splats blended far to near (sorted there too).
+// Camera convention: OpenCV axes, p_cam = R p + t.
 //
 // Data: /api/splats (src/server/scene_binary.h) becomes a RGBA32UI texture, three texels
 // per splat (centre + packed colour, covariance xx xy xz yy, yz zz); /api/selection/mask
-// a R8UI texture (bit 0 selected, bit 1 hidden); the sorted indices a R32UI texture.
+// a R8UI texture (bit 0 selected, bit 1 hidden); each sort a RG32UI texture (per drawn
+// splat, far to near: its index and its view-dependent RGBA8 colour).
 const ROW = 1024;  // splats per texture row (3 texels each)
 const NEAR = 0.2;  // the rasteriser's near plane
 // While moving, quality steps down until a frame takes under ~50 ms (SwiftShader, the
@@ -28,13 +30,14 @@ const vec2 CORNERS[6] = vec2[6](vec2(-1, -1), vec2(1, -1), vec2(-1, 1), vec2(-1,
 void main() {
   int slot = gl_VertexID / 6;
   vec2 a_corner = CORNERS[gl_VertexID % 6];
-  uint a_index = texelFetch(u_order, ivec2(slot % 2048, slot / 2048), 0).r;
+  uvec2 entry = texelFetch(u_order, ivec2(slot % 2048, slot / 2048), 0).rg;
+  uint a_index = entry.r;
   ivec2 at = ivec2(int(a_index % ${ROW}u) * 3, int(a_index / ${ROW}u));
   uvec4 A = texelFetch(u_splats, at, 0), B = texelFetch(u_splats, at + ivec2(1, 0), 0),
         C = texelFetch(u_splats, at + ivec2(2, 0), 0);
   uint flags = texelFetch(u_mask, ivec2(int(a_index % 2048u), int(a_index / 2048u)), 0).r;
   vec3 c = u_R * uintBitsToFloat(A.xyz) + u_t;
-  vec4 rgba = vec4(uvec4(A.w & 255u, (A.w >> 8) & 255u, (A.w >> 16) & 255u, A.w >> 24)) / 255.0;
+  vec4 rgba = vec4(uvec4(entry.g & 255u, (entry.g >> 8) & 255u, (entry.g >> 16) & 255u, entry.g >> 24)) / 255.0;
   if ((flags & 2u) != 0u || c.z < ${NEAR} || rgba.a < 1.0 / 255.0) { gl_Position = vec4(0.0, 0.0, 2.0, 1.0); return; }
   vec4 b = uintBitsToFloat(B); vec2 cc = uintBitsToFloat(C.xy);
   mat3 V = mat3(b.x, b.y, b.z, b.y, b.w, cc.x, b.z, cc.x, cc.y);
@@ -123,9 +126,13 @@ export class SplatRenderer {
     this.orderTex = gl.createTexture();
     this.splatTex = gl.createTexture();
     this.maskTex = gl.createTexture();
-    this.worker = new Worker('/js/sort_worker.js');
+    this.worker = new Worker('/js/sort_worker.js', { type: 'module' });
     this.sortId = 0; this.sortBusy = false; this.sortPending = false; this.firstSortOfScene = 0;
     this.worker.onmessage = (e) => this.sorted(e.data);
+    // Running totals for profiling (tests/e2e/profile_orbit.mjs reads them); the tests read
+    // the exact picture through window.__splatRenderer.snapshot().
+    this.stats = { sorts: 0, sortMs: 0, shadeMs: 0, roundTripMs: 0, uploadMs: 0, drawMs: 0, frames: 0 };
+    window.__splatRenderer = this;
   }
 
   // Fetches the scene's splats when its fingerprint is not the one loaded (one fetch at a
@@ -142,9 +149,18 @@ export class SplatRenderer {
     const res = await fetch('/api/splats', { cache: 'no-store' });
     if (!res.ok) throw new Error(`splats: ${res.status}`);
     const buf = await res.arrayBuffer();
-    const h = readHeader(buf, 'ISGS');
-    if (h.third !== 40 || buf.byteLength !== 32 + 40 * h.count) throw new Error('splats: unexpected record layout');
-    const n = h.count, src = new Uint32Array(buf, 32), f = new Float32Array(buf, 32);
+    const h = readHeader(buf, 'ISGS'), dv = new DataView(buf);
+    const n = h.count, shDegree = dv.getUint32(24, true), shBytes = dv.getUint32(28, true);
+    const shAt = 32 + 40 * n;
+    if (dv.getUint32(4, true) !== 2 || h.third !== 40 || shDegree > 3 || shBytes !== 3 * ((shDegree + 1) ** 2 - 1) ||
+        buf.byteLength !== shAt + (shDegree ? 16 + shBytes * n : 0)) throw new Error('splats: unexpected record layout');
+    const src = new Uint32Array(buf, 32, 10 * n), f = new Float32Array(buf, 32, 10 * n);
+    const colors = new Uint32Array(n);
+    // The SH rest as signed bytes (q - 128, the server's q = round(127 c / s) + 128).
+    const shScales = shDegree ? Array.from(new Float32Array(buf, shAt, 3)) : [0, 0, 0];
+    const shRest = shDegree ? new Int8Array(buf.slice(shAt + 16)) : null;
+    if (shRest) for (let k = 0; k < shRest.length; ++k) shRest[k] ^= -128;
+    this.shDegree = shDegree; this.bytes = buf.byteLength;
     const rows = Math.max(1, Math.ceil(n / ROW));
     const texels = new Uint32Array(ROW * 3 * 4 * rows);
     const positions = new Float32Array(3 * n), score = new Float32Array(n);
@@ -154,6 +170,7 @@ export class SplatRenderer {
       texels.set(src.subarray(s + 4, s + 8), d + 4);
       texels[d + 8] = src[s + 8]; texels[d + 9] = src[s + 9];
       positions[3 * i] = f[s]; positions[3 * i + 1] = f[s + 1]; positions[3 * i + 2] = f[s + 2];
+      colors[i] = src[s + 3];
       // Importance for drawing a subset while moving: opacity x (squared) size.
       score[i] = (src[s + 3] >>> 24) * (f[s + 4] + f[s + 7] + f[s + 9]);
     }
@@ -164,7 +181,11 @@ export class SplatRenderer {
     for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
     this.count = n; this.drawCount = 0; this.fingerprint = h.a;
     this.setMaskBytes(new Uint8Array(n), -1);  // nothing selected until the mask arrives
-    this.worker.postMessage({ type: 'init', positions, importance }, [positions.buffer, importance.buffer]);
+    const transfer = [positions.buffer, importance.buffer, colors.buffer].concat(shRest ? [shRest.buffer] : []);
+    // ?sh=D draws at most SH degree D (0: base colour only; tests/e2e/sh_steps.mjs compares).
+    const cap = new URLSearchParams(location.search).get('sh');
+    const maxDegree = cap !== null && /^[0-3]$/.test(cap) ? Number(cap) : 3;
+    this.worker.postMessage({ type: 'init', positions, importance, colors, shDegree, maxDegree, shRest, shScales }, transfer);
     this.firstSortOfScene = this.sortId + 1;  // earlier answers index the previous scene
     this.requestSort();
   }
@@ -224,25 +245,31 @@ export class SplatRenderer {
     if (!this.camera || !this.count) return;
     if (this.sortBusy) { this.sortPending = true; return; }
     this.sortBusy = true; this.sortPending = false;
+    this.sortSent = performance.now();
     const c = this.camera;
     this.worker.postMessage({ type: 'sort', rot: c.R, t: c.t, tanX: c.width / (2 * c.fx), tanY: c.height / (2 * c.fy),
       near: NEAR, limit: Math.max(1, Math.round(this.count * this.step()[1])), id: ++this.sortId });
   }
 
-  sorted({ order, drawn, ms, id }) {
+  sorted({ order, drawn, ms, msShade, id }) {
     this.sortBusy = false;
+    const st = this.stats, t0 = performance.now();
+    st.sorts++; st.sortMs += ms; st.shadeMs += msShade; st.roundTripMs += t0 - this.sortSent;
     if (id < this.firstSortOfScene) { this.requestSort(); return; }
     this.sortMs = ms;
     const gl = this.gl, rows = Math.max(1, Math.ceil(this.count / 2048));
     gl.bindTexture(gl.TEXTURE_2D, this.orderTex);
     if (this.orderRows !== rows) {  // sized for every splat once per scene, then updated in place
-      gl.texImage2D(gl.TEXTURE_2D, 0, gl.R32UI, 2048, rows, 0, gl.RED_INTEGER, gl.UNSIGNED_INT, null);
+      gl.texImage2D(gl.TEXTURE_2D, 0, gl.RG32UI, 2048, rows, 0, gl.RG_INTEGER, gl.UNSIGNED_INT, null);
       for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
       this.orderRows = rows;
     }
-    const full = Math.floor(order.length / 2048), rest = order.length - 2048 * full;
-    if (full) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, 2048, full, gl.RED_INTEGER, gl.UNSIGNED_INT, order, 0);
-    if (rest) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, full, rest, 1, gl.RED_INTEGER, gl.UNSIGNED_INT, order, 2048 * full);
+    // Only the drawn entries (two words each) are uploaded.
+    const full = Math.floor(drawn / 2048), rest = drawn - 2048 * full;
+    if (full) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, 2048, full, gl.RG_INTEGER, gl.UNSIGNED_INT, order, 0);
+    if (rest) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, full, rest, 1, gl.RG_INTEGER, gl.UNSIGNED_INT, order, 2 * 2048 * full);
+    this.worker.postMessage({ type: 'recycle', buffer: order }, [order.buffer]);
+    st.uploadMs += performance.now() - t0;
     this.drawCount = drawn;
     this.redraw();
     if (this.sortPending) this.requestSort();
@@ -256,7 +283,9 @@ export class SplatRenderer {
 
   frame() {
     this.dirty = false;
+    const t0 = performance.now();
     this.draw();
+    this.stats.drawMs += performance.now() - t0; this.stats.frames++;
     this.adapt();
     this.lastFrame = performance.now();
     this.frames++;
