@@ -2,7 +2,7 @@
 // scene (default the fern fixture), drags in circles like bench_orbit.mjs with Chrome
 // tracing on, and prints per process/thread the busy time of top-level trace events and
 // the page's own counters (sort time in the worker, frames).
-//   node tests/e2e/profile_orbit.mjs [scene] [--query ?full] [--seconds S] [--trace out.json]
+//   node tests/e2e/profile_orbit.mjs [scene] [--query ?full] [--seconds S] [--trace out.json] [--eval JS]
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
@@ -13,6 +13,7 @@ const root = path.join(here, '..', '..');
 const args = process.argv.slice(2);
 const opt = (name, def) => { const i = args.indexOf(name); return i >= 0 ? args.splice(i, 2)[1] : def; };
 const seconds = Number(opt('--seconds', 4)), query = opt('--query', ''), traceOut = opt('--trace', '');
+const setup = opt('--eval', '');  // run in the page before the drags (experiments)
 const scene = args[0] || path.join(root, '..', 'shared', 'fixtures', 'fern', 'scene');
 const bin = process.env.ISEGMAN_BIN || path.join(root, 'build', 'isegman');
 const { chromium } = await import('playwright-core');
@@ -30,6 +31,7 @@ try {
   await page.addStyleTag({ content: '.stage { flex: none !important; width: 964px !important; height: 544px !important; }' });
   await page.click('#btn-orbit');
   await page.waitForTimeout(4000);
+  if (setup) await page.evaluate(setup);
   const box = await (await page.$('#frame')).boundingBox();
   const drag = (secs) => page.evaluate(async ({ cx, cy, seconds }) => {
     const el = document.getElementById('frame');

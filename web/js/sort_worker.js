@@ -70,8 +70,8 @@ function shade(out, m, rot, t) {
   for (let k = 0; k < m; ++k) {
     const i = out[2 * k];
     let dx = positions[3 * i] - ex, dy = positions[3 * i + 1] - ey, dz = positions[3 * i + 2] - ez;
-    const len = Math.hypot(dx, dy, dz) || 1;
-    dx /= len; dy /= len; dz /= len;
+    const inv = 1 / (Math.sqrt(dx * dx + dy * dy + dz * dz) || 1);  // Math.hypot is several times slower
+    dx *= inv; dy *= inv; dz *= inv;
     shBasisRest(shDegree, dx, dy, dz, basis);
     for (let j = 0; j < K; ++j) weighted[j] = basis[j] * shScale[j];
     const c = colors[i];
@@ -80,10 +80,11 @@ function shade(out, m, rot, t) {
       const w = weighted[j];
       r += w * shRest[s]; g += w * shRest[s + 1]; b += w * shRest[s + 2];
     }
-    const q = (v) => (v <= 0 ? 0 : v >= 1 ? 255 : (v * 255 + 0.5) | 0);
-    out[2 * k + 1] = (q(r) | (q(g) << 8) | (q(b) << 16) | (c & 0xff000000)) >>> 0;
+    out[2 * k + 1] = (byte(r) | (byte(g) << 8) | (byte(b) << 16) | (c & 0xff000000)) >>> 0;
   }
 }
+
+function byte(v) { return v <= 0 ? 0 : v >= 1 ? 255 : (v * 255 + 0.5) | 0; }
 
 onmessage = (e) => {
   const msg = e.data;
