@@ -45,7 +45,7 @@ const log = (...a) => console.log(`[${((Date.now() - t0) / 1000).toFixed(1)}s]`,
 function check(cond, what) { if (!cond) throw new Error(`check failed: ${what}`); log(`ok: ${what}`); }
 
 // Whole-test guard: never hang.
-const guard = setTimeout(() => { console.error('e2e: timed out after 240 s'); cleanup(); process.exit(1); }, 240000);
+const guard = setTimeout(() => { console.error('e2e: timed out after 280 s'); cleanup(); process.exit(1); }, 280000);
 guard.unref();
 
 let server = null, context = null, serverLog = '';

@@ -1,7 +1,7 @@
 // View-dependent colour in the WebGL free view: its picture is compared with the server's
 // render of the same camera (the reference rasteriser) on the demo scene with strong SH
 // (the fixture's sh_scene: degrees 1-3 amplified; the plain demo scene's SH is too faint
-// to tell). A second page draws with the SH capped at degree 0 (?sh=0, the base colour
+// to tell). Then the same view is drawn with the SH capped at degree 0 (the base colour
 // only): it must be clearly further from the server render, so the check fails when the
 // SH is ignored or evaluated in another basis.
 import { spawn } from 'node:child_process';
@@ -31,22 +31,30 @@ async function glVsServer(page) {
   });
 }
 
-// Opens `url` + query in a new page, switches to the free camera (the orbit starts at the
-// first training camera) and waits for the full-quality still frame.
-async function freeView(context, url, query, shots, name) {
+// Opens `url` in a new page, switches to the free camera (the orbit starts at the first
+// training camera), waits for the full-quality still frame and compares it with the
+// server render; then again with the SH capped at degree 0.
+async function freeView(context, url, shots) {
   const page = await context.newPage();
   try {
-    await page.goto(`${url}${query}`);
+    await page.goto(url);
     await page.waitForSelector('#view-img[data-rendered]', { timeout: 30000 });
     await page.click('#btn-orbit');
     await page.waitForSelector('#frame[data-key^="f"]');
     if (await page.getAttribute('body', 'data-renderer') !== 'webgl') return null;
     // Splats loaded, sorted and drawn in full (the caption names every splat, not moving).
-    await page.waitForFunction(() => /WebGL · [\d,]+ of [\d,]+ splats/.test(document.getElementById('view-caption').textContent) &&
+    const still = () => page.waitForFunction(() => /WebGL · [\d,]+ of [\d,]+ splats/.test(document.getElementById('view-caption').textContent) &&
       !/moving/.test(document.getElementById('view-caption').textContent), null, { timeout: 60000 });
-    await page.waitForTimeout(1500);
-    await page.screenshot({ path: `${shots}/${name}.png` });
-    return await glVsServer(page);
+    await still();
+    await page.waitForTimeout(1000);
+    await page.screenshot({ path: `${shots}/01b-webgl-sh.png` });
+    const withSh = await glVsServer(page);
+    // Base colour only: wait for a sort made after the cap.
+    const sorts = await page.evaluate(() => { const R = window.__splatRenderer; R.setMaxShDegree(0); return R.stats.sorts; });
+    await page.waitForFunction((n) => window.__splatRenderer.stats.sorts > n, sorts, { timeout: 30000 });
+    await page.waitForTimeout(500);
+    await page.screenshot({ path: `${shots}/01c-webgl-no-sh.png` });
+    return { withSh, baseOnly: await glVsServer(page) };
   } finally {
     await page.close();
   }
@@ -68,9 +76,9 @@ export async function viewDependentColourChecks({ context, bin, scene, outDir, s
       server.stdout.on('data', onData);
       server.stderr.on('data', onData);
     });
-    const withSh = await freeView(context, url, '', shots, '01b-webgl-sh');
-    if (!withSh) { log('WARNING: no WebGL2: the view-dependent colour check is skipped'); return; }
-    const baseOnly = await freeView(context, url, '?sh=0', shots, '01c-webgl-no-sh');
+    const r = await freeView(context, url, shots);
+    if (!r) { log('WARNING: no WebGL2: the view-dependent colour check is skipped'); return; }
+    const { withSh, baseOnly } = r;
     log(`WebGL vs server render ${withSh.width}x${withSh.height}: with SH mean |diff| ${withSh.mad.toFixed(4)} ` +
       `(PSNR ${withSh.psnr.toFixed(1)} dB), base colour only ${baseOnly.mad.toFixed(4)} (PSNR ${baseOnly.psnr.toFixed(1)} dB)`);
     check(withSh.mad < 0.006, `the WebGL free view matches the server render with SH (mean |diff| ${withSh.mad.toFixed(4)} < 0.006)`);

@@ -12,6 +12,7 @@ let importance = null;  // Uint32Array: splat indices, most important first
 let colors = null;      // Uint32Array: r | g << 8 | b << 16 | a << 24 (DC colour, opacity)
 let shRest = null;      // Int8Array: per splat (K - 1) x 3 quantised coefficients, or null
 let shDegree = 0, shCount = 0, shStride = 0;  // degree drawn, its rest coefficients, bytes per splat
+let sceneDegree = 0;
 const shScale = new Float32Array(15);  // per rest coefficient: its band's scale / 127
 let hidden = null;      // Uint8Array of flags (bit 1 hidden), or null
 let depths = null, keys = null, candidates = null;
@@ -84,6 +85,8 @@ function shade(out, m, rot, t) {
   }
 }
 
+function capDegree(max) { shDegree = Math.min(sceneDegree, max); shCount = (shDegree + 1) ** 2 - 1; }
+
 function byte(v) { return v <= 0 ? 0 : v >= 1 ? 255 : (v * 255 + 0.5) | 0; }
 
 onmessage = (e) => {
@@ -91,12 +94,14 @@ onmessage = (e) => {
   if (msg.type === 'init') {
     positions = msg.positions; importance = msg.importance; colors = msg.colors; hidden = null;
     // msg.shDegree: the scene's; msg.maxDegree: a cap (?sh=D), read as a prefix (as the rasteriser's sh_degree).
-    shStride = 3 * ((msg.shDegree + 1) ** 2 - 1); shRest = msg.shRest;
-    shDegree = Math.min(msg.shDegree, msg.maxDegree); shCount = (shDegree + 1) ** 2 - 1;
+    shStride = 3 * ((msg.shDegree + 1) ** 2 - 1); shRest = msg.shRest; sceneDegree = msg.shDegree;
+    capDegree(msg.maxDegree);
     for (let j = 0; j < shCount; ++j) shScale[j] = msg.shScales[j < 3 ? 0 : j < 8 ? 1 : 2] / 127;
     const n = importance.length;
     depths = new Float32Array(n); keys = new Uint16Array(n); candidates = new Uint32Array(n);
     pool.length = 0;
+  } else if (msg.type === 'maxDegree') {
+    capDegree(msg.max);
   } else if (msg.type === 'hidden') {
     hidden = msg.flags;
   } else if (msg.type === 'recycle') {

@@ -88,6 +88,9 @@ export class SplatRenderer {
     // Running totals for profiling (tests/e2e/profile_orbit.mjs reads them); the tests read
     // the exact picture through window.__splatRenderer.snapshot().
     this.stats = { sorts: 0, sortMs: 0, shadeMs: 0, roundTripMs: 0, uploadMs: 0, drawMs: 0, frames: 0 };
+    // ?sh=D draws at most SH degree D.
+    const cap = new URLSearchParams(location.search).get('sh');
+    this.maxShDegree = cap !== null && /^[0-3]$/.test(cap) ? Number(cap) : 3;
     window.__splatRenderer = this;
   }
 
@@ -138,10 +141,8 @@ export class SplatRenderer {
     this.count = n; this.drawCount = 0; this.fingerprint = h.a;
     this.setMaskBytes(new Uint8Array(n), -1);  // nothing selected until the mask arrives
     const transfer = [positions.buffer, importance.buffer, colors.buffer].concat(shRest ? [shRest.buffer] : []);
-    // ?sh=D draws at most SH degree D (0: base colour only; tests/e2e/sh_steps.mjs compares).
-    const cap = new URLSearchParams(location.search).get('sh');
-    const maxDegree = cap !== null && /^[0-3]$/.test(cap) ? Number(cap) : 3;
-    this.worker.postMessage({ type: 'init', positions, importance, colors, shDegree, maxDegree, shRest, shScales }, transfer);
+    this.worker.postMessage({ type: 'init', positions, importance, colors, shDegree, maxDegree: this.maxShDegree, shRest, shScales },
+      transfer);
     this.firstSortOfScene = this.sortId + 1;  // earlier answers index the previous scene
     this.requestSort();
   }
@@ -175,6 +176,13 @@ export class SplatRenderer {
 
   // `tint`: 0 (highlight off) to 1 (selection drawn magenta).
   setTint(tint) { this.tint = tint; this.redraw(); }
+
+  // The highest SH degree drawn (0: base colour only; tests/e2e/sh_steps.mjs compares).
+  setMaxShDegree(max) {
+    this.maxShDegree = max;
+    this.worker.postMessage({ type: 'maxDegree', max });
+    this.requestSort();
+  }
 
   // `camera`: {R (row-major world-to-camera), t, fx, fy, width, height}.
   setCamera(camera) {
