@@ -273,6 +273,10 @@ export class SplatRenderer {
       this.fence = null;
     }
     this.dirty = false;
+    // A drag just started: the order still holds every splat (hundreds of ms to draw in
+    // software GL); keep the still frame shown until the sort of the subset arrives.
+    const wanted = Math.round(this.count * this.step()[1]);
+    if (this.moving && this.drawCount > 2 * wanted && (this.sortBusy || this.sortWanted)) { this.sendSort(); return; }
     const t0 = performance.now();
     this.draw();
     this.fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
