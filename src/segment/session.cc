@@ -116,6 +116,12 @@ int Session::see_through_view(int view, const Click& c) {
   return index;
 }
 
+std::vector<bool> Session::eligible(std::vector<bool> selection) const {
+  if (excluded_.size() == selection.size())
+    for (size_t i = 0; i < selection.size(); ++i) selection[i] = selection[i] && !excluded_[i];
+  return selection;
+}
+
 bool Session::undo() {
   if (history_.empty()) return false;
   state_ = std::move(history_.back());
@@ -428,7 +434,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     bool have_raw = false;
     const bool several = r.candidates.size() > 1 && o.choose_candidate;
     if (inspect || (!first && several)) {
-      current = acc.select(o.tau, o.min_total_weight, o.centre_rule);
+      current = eligible(acc.select(o.tau, o.min_total_weight, o.centre_rule));
       const std::vector<float> values = as_values(current);
       if (several) {  // the coverage decides the candidate, then the candidate's votes
         coverage = selection_values_coverage(scene_, views_[k], values, o.threads);
@@ -483,7 +489,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
 
   // 4. Views no click reached: prompt SAM from the selection rendered in them.
   for (int round = 0; round < o.selection_prompt_rounds && !first; ++round) {
-    const std::vector<bool> current = acc.select(o.tau, o.min_total_weight, o.centre_rule);
+    const std::vector<bool> current = eligible(acc.select(o.tau, o.min_total_weight, o.centre_rule));
     const std::vector<float> values = as_values(current);
     std::vector<size_t> which;
     std::vector<std::vector<models::Click>> prompts;
@@ -533,9 +539,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
   next.views = std::move(fresh);
   if (o.coherence) {
     if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
-    next.selection = coherent_selection(acc, scene_, *neighbours_, o.tau, o.min_total_weight, o.coherence_options, o.centre_rule);
+    next.selection = eligible(coherent_selection(acc, scene_, *neighbours_, o.tau, o.min_total_weight,
+                                                 o.coherence_options, o.centre_rule));
   } else {
-    next.selection = acc.select(o.tau, o.min_total_weight, o.centre_rule);
+    next.selection = eligible(acc.select(o.tau, o.min_total_weight, o.centre_rule));
   }
   rep.selected = size_t(std::count(next.selection.begin(), next.selection.end(), true));
   rep.views_segmented = segmented;

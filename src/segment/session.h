@@ -120,6 +120,9 @@ class Session {
   const SessionOptions& options() const { return options_; }
   // Options for the following rounds (the views stay; benchmarks compare settings on them).
   void set_options(const SessionOptions& options) { options_ = options; }
+  // Gaussians the following rounds may not select (one flag per Gaussian, or empty: none),
+  // e.g. those the user hid from the display: a click selects what the user sees.
+  void set_excluded(std::vector<bool> excluded) { excluded_ = std::move(excluded); }
   // Coverage of the current selection in a view (1 channel, working resolution).
   Image selection_coverage(int view) const;
 
@@ -131,6 +134,8 @@ class Session {
     std::vector<bool> selection;
   };
   RoundReport run_round(State& next, const State& previous);
+  // `selection` without the excluded Gaussians.
+  std::vector<bool> eligible(std::vector<bool> selection) const;
   // The view a positive click in `view` is segmented in: `view` itself, or a render of it
   // without the occluders in front of the clicked surface (made once per view and depth).
   int see_through_view(int view, const Click& click);
@@ -144,6 +149,7 @@ class Session {
   std::vector<State> history_;
   std::vector<std::pair<std::pair<int, float>, int>> peeled_;  // (view, cut depth) -> peeled view
   std::unique_ptr<CentreIndex> neighbours_;  // built at the first decision that needs it
+  std::vector<bool> excluded_;
 };
 
 }  // namespace isegman::segment

@@ -142,6 +142,11 @@ std::vector<uint8_t> AppState::selection_mask() const {
   });
 }
 
+uint64_t AppState::click(ClickRecord click) {
+  click.hidden = display_.hidden(scene_.status().gaussians);
+  return segmentation_.click(click);
+}
+
 DisplayResult AppState::display(DisplayOp op) {
   DisplayResult r = scene_.read([this, op](const GaussianScene&, const std::vector<bool>& mask, uint64_t, uint64_t) {
     return display_.apply(op, mask);

@@ -116,7 +116,9 @@ class AppState {
   PickResult pick(const RenderRequest& view, double x, double y) const;
 
   // Segmentation work runs as jobs; these return the job id.
-  uint64_t click(const ClickRecord& click) { return segmentation_.click(click); }
+  // The click segments what the page shows: the display state's hidden Gaussians are
+  // neither in its view nor selectable.
+  uint64_t click(ClickRecord click);
   // The old click endpoints: walk the history when its step is a click (the job id).
   uint64_t undo_click() { return undo(StepFilter::kClick).job; }
   uint64_t redo_click() { return redo(StepFilter::kClick).job; }

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/sh.h"
+
 namespace isegman::server {
 
 namespace {
-
-constexpr float kShC0 = 0.28209479177387814f;  // the degree-0 SH basis constant
 
 template <typename T>
 void put(std::vector<uint8_t>& out, size_t& at, T v) {
@@ -16,12 +16,12 @@ void put(std::vector<uint8_t>& out, size_t& at, T v) {
   at += sizeof(T);
 }
 
-void put_header(std::vector<uint8_t>& out, const char magic[4], uint32_t count, uint32_t third, uint64_t a,
-                uint64_t b) {
+void put_header(std::vector<uint8_t>& out, const char magic[4], uint32_t version, uint32_t count, uint32_t third,
+                uint64_t a, uint64_t b) {
   size_t at = 0;
   std::memcpy(out.data(), magic, 4);
   at = 4;
-  put<uint32_t>(out, at, 1);
+  put<uint32_t>(out, at, version);
   put<uint32_t>(out, at, count);
   put<uint32_t>(out, at, third);
   put<uint64_t>(out, at, a);
@@ -34,10 +34,12 @@ uint8_t unit_byte(double v) { return uint8_t(std::lround(std::clamp(v, 0.0, 1.0)
 
 std::vector<uint8_t> pack_splats(const GaussianScene& scene, uint64_t fingerprint) {
   const size_t n = scene.size();
-  std::vector<uint8_t> out(kSceneBinaryHeaderBytes + n * kSplatRecordBytes);
-  put_header(out, "ISGS", uint32_t(n), kSplatRecordBytes, fingerprint, 0);
-  size_t at = kSceneBinaryHeaderBytes;
   const int k = scene.coeffs();
+  const uint32_t degree = uint32_t(scene.sh_degree), rest = uint32_t(3 * (k - 1));
+  std::vector<uint8_t> out(kSceneBinaryHeaderBytes + n * kSplatRecordBytes +
+                           (degree > 0 ? kShScalesBytes + n * rest : 0));
+  put_header(out, "ISGS", 2, uint32_t(n), kSplatRecordBytes, fingerprint, uint64_t(degree) | uint64_t(rest) << 32);
+  size_t at = kSceneBinaryHeaderBytes;
   for (size_t i = 0; i < n; ++i) {
     for (int c = 0; c < 3; ++c) put<float>(out, at, scene.positions[3 * i + c]);
     const float* dc = scene.sh.data() + i * size_t(k) * 3;  // coefficient 0, channels r g b
@@ -57,6 +59,25 @@ std::vector<uint8_t> pack_splats(const GaussianScene& scene, uint64_t fingerprin
     put<float>(out, at, float(cov(1, 2)));
     put<float>(out, at, float(cov(2, 2)));
   }
+  if (degree == 0) return out;
+  // Band b holds coefficients b^2 .. (b+1)^2 - 1.
+  float scale[4] = {0, 0, 0, 0};
+  auto band = [](int c) { return c < 4 ? 1 : c < 9 ? 2 : 3; };
+  for (size_t i = 0; i < n; ++i) {
+    const float* c = scene.sh_of(i);
+    for (int j = 3; j < 3 * k; ++j)
+      if (std::isfinite(c[j])) scale[band(j / 3)] = std::max(scale[band(j / 3)], std::abs(c[j]));
+  }
+  for (int b = 1; b <= 3; ++b) put<float>(out, at, scale[b]);
+  put<float>(out, at, 0.f);
+  for (size_t i = 0; i < n; ++i) {
+    const float* c = scene.sh_of(i);
+    for (int j = 3; j < 3 * k; ++j) {
+      const float s = scale[band(j / 3)];
+      const float v = s > 0 && std::isfinite(c[j]) ? c[j] / s : 0.f;
+      out[at++] = uint8_t(std::lround(std::clamp(v, -1.f, 1.f) * 127.f) + 128);
+    }
+  }
   return out;
 }
 
@@ -70,7 +91,7 @@ std::vector<uint8_t> pack_selection(const std::vector<bool>& selected, const std
     hidden_count += h;
     out[kSceneBinaryHeaderBytes + i] = uint8_t((selected[i] ? 1 : 0) | (h ? 2 : 0));
   }
-  put_header(out, "ISGM", uint32_t(n), hidden_count, fingerprint, revision);
+  put_header(out, "ISGM", 1, uint32_t(n), hidden_count, fingerprint, revision);
   return out;
 }
 

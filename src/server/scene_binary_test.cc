@@ -33,12 +33,15 @@ GaussianScene two_gaussians() {
 
 TEST(SceneBinary, SplatsCarryPositionColourOpacityAndCovariance) {
   const std::vector<uint8_t> b = pack_splats(two_gaussians(), 0x1122334455667788ull);
-  ASSERT_EQ(b.size(), kSceneBinaryHeaderBytes + 2 * kSplatRecordBytes);
+  // Degree 1: 9 rest coefficients (3 per channel) per Gaussian after the band scales.
+  ASSERT_EQ(b.size(), kSceneBinaryHeaderBytes + 2 * kSplatRecordBytes + kShScalesBytes + 2 * 9);
   EXPECT_EQ(std::string(b.begin(), b.begin() + 4), "ISGS");
-  EXPECT_EQ(read_at<uint32_t>(b, 4), 1u);
+  EXPECT_EQ(read_at<uint32_t>(b, 4), 2u);
   EXPECT_EQ(read_at<uint32_t>(b, 8), 2u);
   EXPECT_EQ(read_at<uint32_t>(b, 12), kSplatRecordBytes);
   EXPECT_EQ(read_at<uint64_t>(b, 16), 0x1122334455667788ull);
+  EXPECT_EQ(read_at<uint32_t>(b, 24), 1u);  // SH degree
+  EXPECT_EQ(read_at<uint32_t>(b, 28), 9u);  // SH bytes per Gaussian
 
   const size_t r0 = kSceneBinaryHeaderBytes, r1 = r0 + kSplatRecordBytes;
   EXPECT_EQ(read_at<float>(b, r0), 1.f);
@@ -54,6 +57,25 @@ TEST(SceneBinary, SplatsCarryPositionColourOpacityAndCovariance) {
   for (int k = 0; k < 6; ++k) EXPECT_NEAR(read_at<float>(b, r0 + 16 + 4 * k), want0[k], 1e-5) << k;
   const float want1[6] = {1, 0, 0, 1, 0, 1};
   for (int k = 0; k < 6; ++k) EXPECT_NEAR(read_at<float>(b, r1 + 16 + 4 * k), want1[k], 1e-6) << k;
+}
+
+TEST(SceneBinary, ShRestIsQuantisedPerBand) {
+  GaussianScene g = two_gaussians();
+  g.sh_of(0)[4] = -4.5f;  // coefficient 1, green: half of the band's largest magnitude
+  g.sh_of(1)[8] = 1.f;    // coefficient 2, blue
+  const std::vector<uint8_t> b = pack_splats(g, 1);
+  const size_t scales = kSceneBinaryHeaderBytes + 2 * kSplatRecordBytes, rest = scales + kShScalesBytes;
+  EXPECT_EQ(read_at<float>(b, scales), 9.f);  // band 1: the largest |c|
+  EXPECT_EQ(read_at<float>(b, scales + 4), 0.f);
+  // Gaussian 0: coefficient 1 r = 9 -> 255, g = -4.5 -> 128 - 64 (127 * 0.5 rounded), the rest 0 -> 128.
+  EXPECT_EQ(b[rest + 0], 255);
+  EXPECT_EQ(b[rest + 1], 64);
+  for (int j = 2; j < 9; ++j) EXPECT_EQ(b[rest + j], 128) << j;
+  EXPECT_EQ(b[rest + 9 + 5], 128 + 14);  // 127 / 9 rounded
+  // Degree 0: no SH section.
+  GaussianScene flat;
+  flat.resize(1, 0);
+  EXPECT_EQ(pack_splats(flat, 1).size(), kSceneBinaryHeaderBytes + kSplatRecordBytes);
 }
 
 TEST(SceneBinary, SelectionBytesFlagSelectedAndHidden) {

@@ -164,7 +164,7 @@ void Segmentation::rebuild(const Progress& progress, const segment::Session* don
   prepared_.reset();
   int done = int(chosen.size());
   session_ = std::make_unique<segment::Session>(snapshot_->gaussians, std::move(views), sam_, session_options());
-  free_views_.assign(session_->views().size(), std::nullopt);
+  free_views_.assign(session_->views().size(), {});
   std::vector<ClickRecord> replay = std::move(log_);
   log_.clear();
   for (const ClickRecord& c : replay) {
@@ -175,6 +175,7 @@ void Segmentation::rebuild(const Progress& progress, const segment::Session* don
 }
 
 int Segmentation::view_for(const ClickRecord& c, const Progress& progress) {
+  if (hidden_of(c)) return shown_view_for(c, progress);
   const auto& views = session_->views();
   if (c.camera_index >= 0) {
     for (size_t k = 0; k < views.size(); ++k)
@@ -196,11 +197,36 @@ int Segmentation::view_for(const ClickRecord& c, const Progress& progress) {
   }
   if (!c.free_camera) throw AppError(ErrorKind::kInvalid, "click: neither a view nor a free camera");
   for (size_t k = 0; k < free_views_.size(); ++k)
-    if (free_views_[k] && same_camera(*free_views_[k], *c.free_camera)) return int(k);
+    if (free_views_[k].camera && free_views_[k].hidden.empty() && same_camera(*free_views_[k].camera, *c.free_camera))
+      return int(k);
   if (progress) progress(0, 1, "computing the free camera's view (render + SAM embedding)");
   const int k = session_->add_view(segment::build_view(snapshot_->gaussians, *c.free_camera, -1, *sam_, view_options_));
   free_views_.resize(session_->views().size());
-  free_views_[size_t(k)] = *c.free_camera;
+  free_views_[size_t(k)].camera = *c.free_camera;
+  return k;
+}
+
+const std::vector<bool>* Segmentation::hidden_of(const ClickRecord& c) const {
+  if (c.hidden.size() != snapshot_->gaussians.size()) return nullptr;
+  return std::find(c.hidden.begin(), c.hidden.end(), true) != c.hidden.end() ? &c.hidden : nullptr;
+}
+
+int Segmentation::shown_view_for(const ClickRecord& c, const Progress& progress) {
+  const Camera& cam = c.free_camera ? *c.free_camera : snapshot_->cameras.at(size_t(c.camera_index));
+  for (size_t k = 0; k < free_views_.size(); ++k)
+    if (free_views_[k].camera && free_views_[k].hidden == c.hidden && same_camera(*free_views_[k].camera, cam))
+      return int(k);
+  if (progress) progress(0, 1, "rendering the clicked view without the hidden Gaussians (render + SAM embedding)");
+  // Same indices as the snapshot (the session's votes index it); a hidden Gaussian's alpha
+  // is ~1e-13, far under the rasteriser's 1/255 cut, so it neither shows nor gets a vote.
+  GaussianScene shown = snapshot_->gaussians;
+  for (size_t i = 0; i < c.hidden.size(); ++i)
+    if (c.hidden[i]) shown.opacity[i] = -30.f;
+  segment::SegmentView view = segment::build_view(shown, cam, -1, *sam_, view_options_);
+  view.name = (c.free_camera ? std::string("free") : cam.name) + "_shown";
+  const int k = session_->add_view(std::move(view));
+  free_views_.resize(session_->views().size());
+  free_views_[size_t(k)] = {cam, c.hidden};
   return k;
 }
 
@@ -213,6 +239,8 @@ segment::RoundReport Segmentation::click(const ClickRecord& c, const Progress& p
   // The view works at a lower resolution: continuous coordinates just scale.
   const Camera& work = session_->views()[size_t(k)].camera;
   if (progress) progress(0, 1, "segmenting: propagation, SAM, inspection, voting");
+  const std::vector<bool>* hidden = hidden_of(c);
+  session_->set_excluded(hidden ? *hidden : std::vector<bool>{});
   segment::RoundReport r = session_->click(k, rescaled(c.click, full.width, full.height, work.width, work.height));
   log_.push_back(c);
   return r;

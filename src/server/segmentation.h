@@ -29,10 +29,13 @@ struct SegmentSettings {
 
 // A user click: in a training camera (camera_index >= 0) or a free camera, at continuous
 // pixel coordinates of that camera's full-size image (core/click.h), as the page sends it.
+// `hidden`: the Gaussians hidden from display when it was made (one flag per Gaussian, or
+// empty): the click segments what the user saw, and none of them can be selected.
 struct ClickRecord {
   int camera_index = -1;
   std::optional<Camera> free_camera;
   Click click;
+  std::vector<bool> hidden;
 };
 
 // What the evidence strip shows of one segmentation view.
@@ -103,6 +106,11 @@ class Segmentation {
 
  private:
   int view_for(const ClickRecord& click, const Progress& progress);
+  // The clicked camera rendered without the hidden Gaussians (their opacity zeroed, so the
+  // indices stay), added as a view of its own once per camera and hidden set.
+  int shown_view_for(const ClickRecord& click, const Progress& progress);
+  // The click's hidden flags when they fit the scene and hide something, else null.
+  const std::vector<bool>* hidden_of(const ClickRecord& click) const;
   // `donor` / `donor_scene`: a session of another scene (or of this one) whose views the
   // scene change does not reach are reused; nullptr: build every view.
   void rebuild(const Progress& progress, const segment::Session* donor = nullptr,
@@ -112,12 +120,17 @@ class Segmentation {
                                                 const Progress& progress, int total);
   segment::SessionOptions session_options() const;
 
+  // A view added for a click: a free camera, or any camera rendered without hidden Gaussians.
+  struct AddedView {
+    std::optional<Camera> camera;
+    std::vector<bool> hidden;  // empty: the whole scene
+  };
   struct Kept {
     std::shared_ptr<const SceneBundle> snapshot;
     uint64_t fingerprint = 0;
     std::unique_ptr<segment::Session> session;
     std::vector<ClickRecord> log, redo;
-    std::vector<std::optional<Camera>> free_views;
+    std::vector<AddedView> free_views;
   };
   static constexpr size_t kKept = 3;  // each holds its views' renders and embeddings
   void keep_current();
@@ -143,7 +156,7 @@ class Segmentation {
   uint64_t fingerprint_ = 0;
   std::unique_ptr<segment::Session> session_;
   std::vector<ClickRecord> log_, redo_;
-  std::vector<std::optional<Camera>> free_views_;  // per session view: its free camera
+  std::vector<AddedView> free_views_;  // per session view: the camera it was added for, if any
 };
 
 }  // namespace isegman::server

@@ -5,7 +5,7 @@
 // subset of the splats while moving, adapted to the frame rate), the WebGL view drawing
 // every splat at full resolution (?full) and the server-render fallback (?nogl).
 // Chromium here has no GPU: WebGL2 runs on SwiftShader (software).
-//   node tests/e2e/bench_orbit.mjs [scene] [--seconds S]
+//   node tests/e2e/bench_orbit.mjs [scene] [--seconds S] [--only webgl|full|server]
 // ISEGMAN_BIN (default build/isegman) names the binary.
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
@@ -18,6 +18,8 @@ const root = path.join(here, '..', '..');
 const args = process.argv.slice(2);
 const secIdx = args.indexOf('--seconds');
 const seconds = secIdx >= 0 ? Number(args.splice(secIdx, 2)[1]) : 6;
+const onlyIdx = args.indexOf('--only');  // one row: webgl, full or server (repeated A/B runs)
+const only = onlyIdx >= 0 ? args.splice(onlyIdx, 2)[1] : null;
 const scene = args[0] || path.join(root, '..', 'shared', 'fixtures', 'fern', 'scene');
 const bin = process.env.ISEGMAN_BIN || path.join(root, 'build', 'isegman');
 const CHROMIUM = '/usr/bin/chromium';
@@ -83,7 +85,8 @@ async function measure(query) {
 }
 
 try {
-  const rows = [['WebGL, subset while moving', ''], ['WebGL, every splat', '?full'], ['server renders (fallback)', '?nogl']];
+  const rows = [['WebGL, subset while moving', '', 'webgl'], ['WebGL, every splat', '?full', 'full'], ['server renders (fallback)', '?nogl', 'server']]
+    .filter((r) => !only || r[2] === only);
   const load = () => os.loadavg().map((v) => v.toFixed(1)).join(' ');
   console.log(`scene ${scene}, ${seconds} s of orbiting each; CPU ${os.cpus()[0].model} x${os.cpus().length}, load average ${load()}`);
   for (const [name, q] of rows) {

@@ -4,7 +4,7 @@
 // and on the server) and checks that the exported PLY has fewer Gaussians and that the
 // object's pixels changed in a render. On the way: the highlight toggle, isolate / hide /
 // show all (server renders and the WebGL view), double-click focus and orbiting around the
-// picked point. Chromium runs WebGL2 on SwiftShader (no GPU). Screenshots (1366x768) go to
+// picked point, and the WebGL view's view-dependent colour against the server render. Chromium runs WebGL2 on SwiftShader (no GPU). Screenshots (1366x768) go to
 // $ISEGMAN_E2E_WORK/screenshots.
 // Exit 77 (skipped) when chromium, playwright-core or the SAM models are absent.
 import { spawn, execFileSync } from 'node:child_process';
@@ -13,6 +13,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { selectionToolSteps } from './tools_steps.mjs';
+import { viewDependentColourChecks } from './sh_steps.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const SKIP = 77;
@@ -44,7 +45,7 @@ const log = (...a) => console.log(`[${((Date.now() - t0) / 1000).toFixed(1)}s]`,
 function check(cond, what) { if (!cond) throw new Error(`check failed: ${what}`); log(`ok: ${what}`); }
 
 // Whole-test guard: never hang.
-const guard = setTimeout(() => { console.error('e2e: timed out after 240 s'); cleanup(); process.exit(1); }, 240000);
+const guard = setTimeout(() => { console.error('e2e: timed out after 280 s'); cleanup(); process.exit(1); }, 280000);
 guard.unref();
 
 let server = null, context = null, serverLog = '';
@@ -249,6 +250,8 @@ try {
   await page.goto(url);
   await page.waitForSelector('#view-img[data-rendered]', { timeout: 30000 });
   await page.screenshot({ path: path.join(shots, '01-loading.png') });
+  // While the server prepares the segmentation: the WebGL view's colours against its renders.
+  await viewDependentColourChecks({ context, bin, scene: fx.sh_scene, outDir: path.join(work, 'sh-out'), shots, check, log });
   await page.waitForSelector('body[data-seg="ready"][data-busy="false"]', { timeout: 150000 });
   log('segmentation ready');
 

@@ -2,7 +2,9 @@
 // and, for one camera, where an object is: the object with the largest visible area, a
 // pixel well inside it (where the test clicks) and its bounding box, from the scene's
 // ground-truth labels (render of the object's Gaussians, occlusion included).
-//   isegman_e2e_fixture <out_dir> [camera]  -> <out_dir>/scene/, <out_dir>/object.json
+// Also the same scene with strong view-dependent colour (<out_dir>/sh_scene/: the SH
+// coefficients of degrees 1-3 times 15), for comparing the WebGL view's SH with the server's.
+//   isegman_e2e_fixture <out_dir> [camera]  -> <out_dir>/scene/, <out_dir>/sh_scene/, <out_dir>/object.json
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -32,6 +34,13 @@ int main(int argc, char** argv) {
   }
   const Camera& cam = demo.bundle.cameras[size_t(cam_index)];
   write_scene_dir((out / "scene").string(), g, demo.bundle.cameras);
+  {
+    GaussianScene shiny = g;
+    const int k = shiny.coeffs();
+    for (size_t i = 0; i < shiny.size(); ++i)
+      for (int c = 3; c < 3 * k; ++c) shiny.sh_of(i)[c] *= 15.f;
+    write_scene_dir((out / "sh_scene").string(), shiny, demo.bundle.cameras);
+  }
 
   int best = -1;
   size_t best_pixels = 0;
@@ -69,6 +78,7 @@ int main(int argc, char** argv) {
   size_t count = 0;
   for (int l : demo.labels) count += l == best;
   nlohmann::json j = {{"scene", (out / "scene").string()},
+                      {"sh_scene", (out / "sh_scene").string()},
                       {"camera", cam_index},
                       {"width", cam.width},
                       {"height", cam.height},

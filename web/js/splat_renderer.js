@@ -2,79 +2,39 @@
 // rasteriser stays the reference for evidence, clicked views and exports). It follows
 // the INRIA rasteriser: EWA projection with the perspective Jacobian (x/z, y/z clamped to
 // 1.3x the half field of view), +0.3 px on the 2D covariance diagonal, alpha =
-// min(0.99, o exp(-d^2/2)) cut at 1/255, base colour from the SH DC term, splats blended
-// far to near (sorted in sort_worker.js). Camera convention: OpenCV axes, p_cam = R p + t.
+// min(0.99, o exp(-d^2/2)) cut at 1/255, colour from the SH (degrees 0-3, evaluated per
+// splat and view in sort_worker.js), splats blended far to near (sorted there too).
+// Camera convention: OpenCV axes, p_cam = R p + t.
 //
 // Data: /api/splats (src/server/scene_binary.h) becomes a RGBA32UI texture, three texels
 // per splat (centre + packed colour, covariance xx xy xz yy, yz zz); /api/selection/mask
-// a R8UI texture (bit 0 selected, bit 1 hidden); the sorted indices a R32UI texture.
+// a R8UI texture (bit 0 selected, bit 1 hidden); each sort a RG32UI texture (per drawn
+// splat, far to near: its index and its view-dependent RGBA8 colour).
+import { NEAR, NOTHING_FS, ORDER_ROW, PROJ_ROW, QUAD_VS, SPLAT_FS, projectVS } from './splat_shaders.js';
+
 const ROW = 1024;  // splats per texture row (3 texels each)
-const NEAR = 0.2;  // the rasteriser's near plane
+const SORT_INTERVAL_MS = 80;  // least time between two sorts while moving
 // While moving, quality steps down until a frame takes under ~50 ms (SwiftShader, the
 // software WebGL of a machine without GPU, draws all of fern at 960x540 in ~0.8 s):
 // [resolution divisor, share of the splats drawn, most important first].
 const LADDER = [[1, 1], [1, 1 / 2], [1.5, 1 / 2], [2, 1 / 2], [2, 1 / 4], [3, 1 / 4], [3, 1 / 8], [4, 1 / 8], [4, 1 / 16], [6, 1 / 16]];
-
-const VS = `#version 300 es
-precision highp float; precision highp int; precision highp usampler2D;
-uniform usampler2D u_splats; uniform usampler2D u_mask; uniform usampler2D u_order;
-uniform mat3 u_R; uniform vec3 u_t; uniform vec2 u_focal; uniform vec2 u_size; uniform vec2 u_tan;
-uniform float u_tint;
-out vec4 v_color; out vec2 v_pos;
-// Two triangles per splat from gl_VertexID, no attributes (instancing is ~3x slower on
-// SwiftShader, which draws instances one by one; indexed corners and point sprites were
-// no faster); the splat is the sorted order's entry gl_VertexID / 6.
-const vec2 CORNERS[6] = vec2[6](vec2(-1, -1), vec2(1, -1), vec2(-1, 1), vec2(-1, 1), vec2(1, -1), vec2(1, 1));
-void main() {
-  int slot = gl_VertexID / 6;
-  vec2 a_corner = CORNERS[gl_VertexID % 6];
-  uint a_index = texelFetch(u_order, ivec2(slot % 2048, slot / 2048), 0).r;
-  ivec2 at = ivec2(int(a_index % ${ROW}u) * 3, int(a_index / ${ROW}u));
-  uvec4 A = texelFetch(u_splats, at, 0), B = texelFetch(u_splats, at + ivec2(1, 0), 0),
-        C = texelFetch(u_splats, at + ivec2(2, 0), 0);
-  uint flags = texelFetch(u_mask, ivec2(int(a_index % 2048u), int(a_index / 2048u)), 0).r;
-  vec3 c = u_R * uintBitsToFloat(A.xyz) + u_t;
-  vec4 rgba = vec4(uvec4(A.w & 255u, (A.w >> 8) & 255u, (A.w >> 16) & 255u, A.w >> 24)) / 255.0;
-  if ((flags & 2u) != 0u || c.z < ${NEAR} || rgba.a < 1.0 / 255.0) { gl_Position = vec4(0.0, 0.0, 2.0, 1.0); return; }
-  vec4 b = uintBitsToFloat(B); vec2 cc = uintBitsToFloat(C.xy);
-  mat3 V = mat3(b.x, b.y, b.z, b.y, b.w, cc.x, b.z, cc.x, cc.y);
-  vec2 lim = 1.3 * u_tan;
-  float tx = clamp(c.x / c.z, -lim.x, lim.x) * c.z, ty = clamp(c.y / c.z, -lim.y, lim.y) * c.z;
-  float iz = 1.0 / c.z;
-  mat3 J = mat3(u_focal.x * iz, 0.0, 0.0, 0.0, u_focal.y * iz, 0.0,
-                -u_focal.x * tx * iz * iz, -u_focal.y * ty * iz * iz, 0.0);
-  mat3 T = J * u_R;
-  mat3 S = T * V * transpose(T);
-  float a = S[0][0] + 0.3, bb = S[0][1], d = S[1][1] + 0.3;
-  float mid = 0.5 * (a + d), rad = length(vec2(0.5 * (a - d), bb));
-  float l1 = mid + rad, l2 = max(mid - rad, 1e-4);
-  vec2 e1 = abs(bb) > 1e-9 ? normalize(vec2(bb, l1 - a)) : (a >= d ? vec2(1.0, 0.0) : vec2(0.0, 1.0));
-  vec2 e2 = vec2(-e1.y, e1.x);
-  // Out to where alpha falls below 1/255 (at most 3 sigma, the rasteriser's radius).
-  float k = min(3.0, sqrt(2.0 * log(255.0 * rgba.a)));
-  vec2 px = vec2(u_focal.x * c.x * iz, u_focal.y * c.y * iz) + 0.5 * u_size
-          + a_corner.x * k * sqrt(l1) * e1 + a_corner.y * k * sqrt(l2) * e2;
-  gl_Position = vec4(2.0 * px.x / u_size.x - 1.0, 1.0 - 2.0 * px.y / u_size.y, 0.0, 1.0);
-  v_pos = a_corner * k;
-  vec3 col = rgba.rgb;
-  if ((flags & 1u) != 0u) col = mix(col, vec3(1.0, 0.2, 0.8), u_tint);
-  v_color = vec4(col, rgba.a);
-}`;
-
-const FS = `#version 300 es
-precision highp float;
-in vec4 v_color; in vec2 v_pos; out vec4 o;
-void main() {
-  float alpha = min(0.99, v_color.a * exp(-0.5 * dot(v_pos, v_pos)));
-  if (alpha < 1.0 / 255.0) discard;
-  o = vec4(v_color.rgb * alpha, alpha);
-}`;
 
 function compile(gl, type, src) {
   const s = gl.createShader(type);
   gl.shaderSource(s, src); gl.compileShader(s);
   if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(`splat shader: ${gl.getShaderInfoLog(s)}`);
   return s;
+}
+
+// A linked program and its uniform locations; `feedback`: varyings written by transform feedback.
+function program(gl, vs, fs, uniforms, feedback = null) {
+  const p = gl.createProgram();
+  gl.attachShader(p, compile(gl, gl.VERTEX_SHADER, vs));
+  gl.attachShader(p, compile(gl, gl.FRAGMENT_SHADER, fs));
+  if (feedback) gl.transformFeedbackVaryings(p, feedback, gl.INTERLEAVED_ATTRIBS);
+  gl.linkProgram(p);
+  if (!gl.getProgramParameter(p, gl.LINK_STATUS)) throw new Error(`splat program: ${gl.getProgramInfoLog(p)}`);
+  return { p, loc: Object.fromEntries(uniforms.map((n) => [n, gl.getUniformLocation(p, n)])) };
 }
 
 function readHeader(buf, magic) {
@@ -107,25 +67,31 @@ export class SplatRenderer {
 
   constructor(canvas, gl, background) {
     Object.assign(this, { canvas, gl, background });
-    this.count = 0; this.drawCount = 0; this.camera = null; this.tint = 0.5;
+    this.count = 0; this.drawCount = 0; this.camera = null; this.tint = 0.5; this.drawnSize = [0, 0];
     this.moving = false; this.level = 4; this.window = null; this.moves = 0; this.fingerprint = null; this.maskRevision = -1;
     this.frames = 0; this.lastFrame = 0; this.dirty = false; this.onDraw = null;
     this.subsetWhileMoving = true;
-    const p = gl.createProgram();
-    gl.attachShader(p, compile(gl, gl.VERTEX_SHADER, VS));
-    gl.attachShader(p, compile(gl, gl.FRAGMENT_SHADER, FS));
-    gl.linkProgram(p);
-    if (!gl.getProgramParameter(p, gl.LINK_STATUS)) throw new Error(`splat program: ${gl.getProgramInfoLog(p)}`);
-    this.program = p;
-    this.loc = Object.fromEntries(['u_splats', 'u_mask', 'u_order', 'u_R', 'u_t', 'u_focal', 'u_size', 'u_tan', 'u_tint']
-      .map((n) => [n, gl.getUniformLocation(p, n)]));
+    this.project = program(gl, projectVS(ROW), NOTHING_FS,
+      ['u_splats', 'u_mask', 'u_order', 'u_R', 'u_t', 'u_focal', 'u_size', 'u_tan', 'u_tint'], ['v_a', 'v_b']);
+    this.quads = program(gl, QUAD_VS, SPLAT_FS, ['u_proj', 'u_size']);
+    this.feedback = gl.createTransformFeedback();
+    this.projBuf = gl.createBuffer();  // footprints, 32 bytes per drawn splat
+    this.projTex = gl.createTexture();  // the same as a RGBA32F texture, 2 texels per splat
+    this.projRows = 0;
     this.vao = gl.createVertexArray();  // no attributes: everything comes from textures
     this.orderTex = gl.createTexture();
     this.splatTex = gl.createTexture();
     this.maskTex = gl.createTexture();
-    this.worker = new Worker('/js/sort_worker.js');
-    this.sortId = 0; this.sortBusy = false; this.sortPending = false; this.firstSortOfScene = 0;
+    this.worker = new Worker('/js/sort_worker.js', { type: 'module' });
+    this.sortId = 0; this.sortBusy = false; this.sortWanted = false; this.sortSent = 0; this.firstSortOfScene = 0;
     this.worker.onmessage = (e) => this.sorted(e.data);
+    // Running totals for profiling (tests/e2e/profile_orbit.mjs reads them); the tests read
+    // the exact picture through window.__splatRenderer.snapshot().
+    this.stats = { sorts: 0, sortMs: 0, shadeMs: 0, roundTripMs: 0, uploadMs: 0, drawMs: 0, frames: 0 };
+    // ?sh=D draws at most SH degree D.
+    const cap = new URLSearchParams(location.search).get('sh');
+    this.maxShDegree = cap !== null && /^[0-3]$/.test(cap) ? Number(cap) : 3;
+    window.__splatRenderer = this;
   }
 
   // Fetches the scene's splats when its fingerprint is not the one loaded (one fetch at a
@@ -142,9 +108,18 @@ export class SplatRenderer {
     const res = await fetch('/api/splats', { cache: 'no-store' });
     if (!res.ok) throw new Error(`splats: ${res.status}`);
     const buf = await res.arrayBuffer();
-    const h = readHeader(buf, 'ISGS');
-    if (h.third !== 40 || buf.byteLength !== 32 + 40 * h.count) throw new Error('splats: unexpected record layout');
-    const n = h.count, src = new Uint32Array(buf, 32), f = new Float32Array(buf, 32);
+    const h = readHeader(buf, 'ISGS'), dv = new DataView(buf);
+    const n = h.count, shDegree = dv.getUint32(24, true), shBytes = dv.getUint32(28, true);
+    const shAt = 32 + 40 * n;
+    if (dv.getUint32(4, true) !== 2 || h.third !== 40 || shDegree > 3 || shBytes !== 3 * ((shDegree + 1) ** 2 - 1) ||
+        buf.byteLength !== shAt + (shDegree ? 16 + shBytes * n : 0)) throw new Error('splats: unexpected record layout');
+    const src = new Uint32Array(buf, 32, 10 * n), f = new Float32Array(buf, 32, 10 * n);
+    const colors = new Uint32Array(n);
+    // The SH rest as signed bytes (q - 128, the server's q = round(127 c / s) + 128).
+    const shScales = shDegree ? Array.from(new Float32Array(buf, shAt, 3)) : [0, 0, 0];
+    const shRest = shDegree ? new Int8Array(buf.slice(shAt + 16)) : null;
+    if (shRest) for (let k = 0; k < shRest.length; ++k) shRest[k] ^= -128;
+    this.shDegree = shDegree; this.bytes = buf.byteLength;
     const rows = Math.max(1, Math.ceil(n / ROW));
     const texels = new Uint32Array(ROW * 3 * 4 * rows);
     const positions = new Float32Array(3 * n), score = new Float32Array(n);
@@ -154,6 +129,7 @@ export class SplatRenderer {
       texels.set(src.subarray(s + 4, s + 8), d + 4);
       texels[d + 8] = src[s + 8]; texels[d + 9] = src[s + 9];
       positions[3 * i] = f[s]; positions[3 * i + 1] = f[s + 1]; positions[3 * i + 2] = f[s + 2];
+      colors[i] = src[s + 3];
       // Importance for drawing a subset while moving: opacity x (squared) size.
       score[i] = (src[s + 3] >>> 24) * (f[s + 4] + f[s + 7] + f[s + 9]);
     }
@@ -164,7 +140,9 @@ export class SplatRenderer {
     for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
     this.count = n; this.drawCount = 0; this.fingerprint = h.a;
     this.setMaskBytes(new Uint8Array(n), -1);  // nothing selected until the mask arrives
-    this.worker.postMessage({ type: 'init', positions, importance }, [positions.buffer, importance.buffer]);
+    const transfer = [positions.buffer, importance.buffer, colors.buffer].concat(shRest ? [shRest.buffer] : []);
+    this.worker.postMessage({ type: 'init', positions, importance, colors, shDegree, maxDegree: this.maxShDegree, shRest, shScales },
+      transfer);
     this.firstSortOfScene = this.sortId + 1;  // earlier answers index the previous scene
     this.requestSort();
   }
@@ -199,6 +177,13 @@ export class SplatRenderer {
   // `tint`: 0 (highlight off) to 1 (selection drawn magenta).
   setTint(tint) { this.tint = tint; this.redraw(); }
 
+  // The highest SH degree drawn (0: base colour only; tests/e2e/sh_steps.mjs compares).
+  setMaxShDegree(max) {
+    this.maxShDegree = max;
+    this.worker.postMessage({ type: 'maxDegree', max });
+    this.requestSort();
+  }
+
   // `camera`: {R (row-major world-to-camera), t, fx, fy, width, height}.
   setCamera(camera) {
     this.camera = camera;
@@ -220,32 +205,51 @@ export class SplatRenderer {
     this.redraw();
   }
 
+  // A sort is sent from the next frame, at most one in flight: sorting (and uploading the
+  // answer) once per pointer event instead ran ~15 sorts and uploads per drawn frame,
+  // which kept SwiftShader's GPU thread busy with uploads (tests/e2e/profile_orbit.mjs).
   requestSort() {
-    if (!this.camera || !this.count) return;
-    if (this.sortBusy) { this.sortPending = true; return; }
-    this.sortBusy = true; this.sortPending = false;
+    this.sortWanted = true;
+    this.redraw();
+  }
+
+  sendSort() {
+    if (!this.sortWanted || this.sortBusy || !this.camera || !this.count) return;
+    // While moving, at most ~12 sorts a second: between them the order of a few degrees
+    // ago is still nearly right, and the worker's CPU time is the page's to draw with.
+    const wait = this.sortSent + SORT_INTERVAL_MS - performance.now();
+    if (this.moving && wait > 0) {
+      if (!this.sortTimer) this.sortTimer = setTimeout(() => { this.sortTimer = null; this.sendSort(); }, wait);
+      return;
+    }
+    this.sortBusy = true; this.sortWanted = false;
+    this.sortSent = performance.now();
     const c = this.camera;
     this.worker.postMessage({ type: 'sort', rot: c.R, t: c.t, tanX: c.width / (2 * c.fx), tanY: c.height / (2 * c.fy),
       near: NEAR, limit: Math.max(1, Math.round(this.count * this.step()[1])), id: ++this.sortId });
   }
 
-  sorted({ order, drawn, ms, id }) {
+  sorted({ order, drawn, ms, msShade, id }) {
     this.sortBusy = false;
-    if (id < this.firstSortOfScene) { this.requestSort(); return; }
+    const st = this.stats, t0 = performance.now();
+    st.sorts++; st.sortMs += ms; st.shadeMs += msShade; st.roundTripMs += t0 - this.sortSent;
+    if (id < this.firstSortOfScene) { this.sendSort(); return; }
     this.sortMs = ms;
-    const gl = this.gl, rows = Math.max(1, Math.ceil(this.count / 2048));
+    const gl = this.gl, rows = Math.max(1, Math.ceil(this.count / ORDER_ROW));
     gl.bindTexture(gl.TEXTURE_2D, this.orderTex);
     if (this.orderRows !== rows) {  // sized for every splat once per scene, then updated in place
-      gl.texImage2D(gl.TEXTURE_2D, 0, gl.R32UI, 2048, rows, 0, gl.RED_INTEGER, gl.UNSIGNED_INT, null);
+      gl.texImage2D(gl.TEXTURE_2D, 0, gl.RG32UI, ORDER_ROW, rows, 0, gl.RG_INTEGER, gl.UNSIGNED_INT, null);
       for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
       this.orderRows = rows;
     }
-    const full = Math.floor(order.length / 2048), rest = order.length - 2048 * full;
-    if (full) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, 2048, full, gl.RED_INTEGER, gl.UNSIGNED_INT, order, 0);
-    if (rest) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, full, rest, 1, gl.RED_INTEGER, gl.UNSIGNED_INT, order, 2048 * full);
+    // Only the drawn entries (two words each) are uploaded.
+    const full = Math.floor(drawn / ORDER_ROW), rest = drawn - ORDER_ROW * full;
+    if (full) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, ORDER_ROW, full, gl.RG_INTEGER, gl.UNSIGNED_INT, order, 0);
+    if (rest) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, full, rest, 1, gl.RG_INTEGER, gl.UNSIGNED_INT, order, 2 * ORDER_ROW * full);
+    this.worker.postMessage({ type: 'recycle', buffer: order }, [order.buffer]);
+    st.uploadMs += performance.now() - t0;
     this.drawCount = drawn;
     this.redraw();
-    if (this.sortPending) this.requestSort();
   }
 
   redraw() {
@@ -254,9 +258,31 @@ export class SplatRenderer {
     requestAnimationFrame(() => this.frame());
   }
 
+  // One frame in flight: while the GPU (SwiftShader's thread, on a machine without GPU)
+  // has not finished the previous frame, wait for the next animation frame instead of
+  // queueing another; frames queued behind it were drawn and then never shown.
   frame() {
+    const gl = this.gl;
+    if (this.fence) {
+      if (gl.getSyncParameter(this.fence, gl.SYNC_STATUS) !== gl.SIGNALED) {
+        this.stats.waits = (this.stats.waits || 0) + 1;
+        requestAnimationFrame(() => this.frame());
+        return;
+      }
+      gl.deleteSync(this.fence);
+      this.fence = null;
+    }
     this.dirty = false;
+    // A drag just started: the order still holds every splat (hundreds of ms to draw in
+    // software GL); keep the still frame shown until the sort of the subset arrives.
+    const wanted = Math.round(this.count * this.step()[1]);
+    if (this.moving && this.drawCount > 2 * wanted && (this.sortBusy || this.sortWanted)) { this.sendSort(); return; }
+    const t0 = performance.now();
     this.draw();
+    this.fence = gl.fenceSync(gl.SYNC_GPU_COMMANDS_COMPLETE, 0);
+    gl.flush();
+    this.stats.drawMs += performance.now() - t0; this.stats.frames++;
+    this.sendSort();
     this.adapt();
     this.lastFrame = performance.now();
     this.frames++;
@@ -285,23 +311,72 @@ export class SplatRenderer {
   draw() {
     const gl = this.gl, bg = this.background;
     let c = this.camera;
+    // The canvas keeps the camera's size; a lower step draws into a smaller framebuffer
+    // that is blitted (scaled) onto it. Resizing the canvas itself made Chromium wait for
+    // the GPU process (a glGetError round trip, ~170 ms each time on SwiftShader).
+    let low = null;
     if (c) {
+      if (this.canvas.width !== c.width || this.canvas.height !== c.height) { this.canvas.width = c.width; this.canvas.height = c.height; }
       const div = this.step()[0];
       const w = Math.max(16, Math.round(c.width / div)), h = Math.max(16, Math.round(c.height / div));
-      c = { ...c, width: w, height: h, fx: (c.fx * w) / c.width, fy: (c.fy * h) / c.height };
-      if (this.canvas.width !== w || this.canvas.height !== h) { this.canvas.width = w; this.canvas.height = h; }
+      if (w !== c.width || h !== c.height) {
+        low = this.lowTarget(w, h);
+        c = { ...c, width: w, height: h, fx: (c.fx * w) / c.width, fy: (c.fy * h) / c.height };
+      }
     }
-    gl.viewport(0, 0, this.canvas.width, this.canvas.height);
+    this.drawnSize = c ? [c.width, c.height] : [this.canvas.width, this.canvas.height];
+    gl.bindFramebuffer(gl.FRAMEBUFFER, low);
+    gl.viewport(0, 0, this.drawnSize[0], this.drawnSize[1]);
     gl.clearColor(bg[0], bg[1], bg[2], 1);
     gl.clear(gl.COLOR_BUFFER_BIT);
-    if (!c || !this.drawCount) return;
-    gl.useProgram(this.program);
-    gl.enable(gl.BLEND);
-    gl.blendFunc(gl.ONE, gl.ONE_MINUS_SRC_ALPHA);
+    if (c && this.drawCount) this.drawSplats(c);
+    if (low) {
+      gl.bindFramebuffer(gl.READ_FRAMEBUFFER, low);
+      gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
+      gl.blitFramebuffer(0, 0, c.width, c.height, 0, 0, this.canvas.width, this.canvas.height, gl.COLOR_BUFFER_BIT, gl.LINEAR);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    }
+  }
+
+  // The framebuffer of a lower step (its renderbuffer reallocated when the size changes).
+  lowTarget(w, h) {
+    const gl = this.gl;
+    if (!this.low) this.low = { fb: gl.createFramebuffer(), rb: gl.createRenderbuffer(), w: 0, h: 0 };
+    const L = this.low;
+    if (L.w !== w || L.h !== h) {
+      gl.bindRenderbuffer(gl.RENDERBUFFER, L.rb);
+      gl.renderbufferStorage(gl.RENDERBUFFER, gl.RGBA8, w, h);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, L.fb);
+      gl.framebufferRenderbuffer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.RENDERBUFFER, L.rb);
+      Object.assign(L, { w, h });
+    }
+    return L.fb;
+  }
+
+  // The two passes (footprints, then quads) into the bound framebuffer for camera `c`.
+  drawSplats(c) {
+    const gl = this.gl;
+    const n = this.drawCount;
+    gl.bindVertexArray(this.vao);
+    // 1. Footprints: one vertex per splat into projBuf, nothing rasterised.
+    const rows = Math.max(1, Math.ceil(this.count / PROJ_ROW));
+    if (this.projRows !== rows) {  // sized for every splat once per scene
+      gl.bindBuffer(gl.ARRAY_BUFFER, this.projBuf);
+      gl.bufferData(gl.ARRAY_BUFFER, 32 * PROJ_ROW * rows, gl.DYNAMIC_COPY);
+      gl.bindBuffer(gl.ARRAY_BUFFER, null);
+      // Immutable storage: ANGLE copies a pixel-unpack buffer into it on the GPU.
+      gl.deleteTexture(this.projTex);
+      this.projTex = gl.createTexture();
+      gl.activeTexture(gl.TEXTURE3); gl.bindTexture(gl.TEXTURE_2D, this.projTex);
+      gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, 2 * PROJ_ROW, rows);
+      for (const p of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, p, gl.NEAREST);
+      this.projRows = rows;
+    }
+    const P = this.project, L = P.loc;
+    gl.useProgram(P.p);
     gl.activeTexture(gl.TEXTURE0); gl.bindTexture(gl.TEXTURE_2D, this.splatTex);
     gl.activeTexture(gl.TEXTURE1); gl.bindTexture(gl.TEXTURE_2D, this.maskTex);
     gl.activeTexture(gl.TEXTURE2); gl.bindTexture(gl.TEXTURE_2D, this.orderTex);
-    const L = this.loc;
     gl.uniform1i(L.u_splats, 0); gl.uniform1i(L.u_mask, 1); gl.uniform1i(L.u_order, 2);
     gl.uniformMatrix3fv(L.u_R, true, c.R);
     gl.uniform3fv(L.u_t, c.t);
@@ -309,8 +384,30 @@ export class SplatRenderer {
     gl.uniform2f(L.u_size, c.width, c.height);
     gl.uniform2f(L.u_tan, c.width / (2 * c.fx), c.height / (2 * c.fy));
     gl.uniform1f(L.u_tint, this.tint);
-    gl.bindVertexArray(this.vao);
-    gl.drawArrays(gl.TRIANGLES, 0, 6 * this.drawCount);
+    gl.enable(gl.RASTERIZER_DISCARD);
+    gl.bindTransformFeedback(gl.TRANSFORM_FEEDBACK, this.feedback);
+    gl.bindBufferBase(gl.TRANSFORM_FEEDBACK_BUFFER, 0, this.projBuf);
+    gl.beginTransformFeedback(gl.POINTS);
+    gl.drawArrays(gl.POINTS, 0, n);
+    gl.endTransformFeedback();
+    gl.bindBufferBase(gl.TRANSFORM_FEEDBACK_BUFFER, 0, null);
+    gl.bindTransformFeedback(gl.TRANSFORM_FEEDBACK, null);
+    gl.disable(gl.RASTERIZER_DISCARD);
+    // The footprints into the float texture (a copy between GPU buffers, no read back).
+    gl.activeTexture(gl.TEXTURE3); gl.bindTexture(gl.TEXTURE_2D, this.projTex);
+    gl.bindBuffer(gl.PIXEL_UNPACK_BUFFER, this.projBuf);
+    const full = Math.floor(n / PROJ_ROW), rest = n - PROJ_ROW * full;
+    if (full) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, 2 * PROJ_ROW, full, gl.RGBA, gl.FLOAT, 0);
+    if (rest) gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, full, 2 * rest, 1, gl.RGBA, gl.FLOAT, 32 * PROJ_ROW * full);
+    gl.bindBuffer(gl.PIXEL_UNPACK_BUFFER, null);
+    // 2. Quads, blended far to near.
+    const Q = this.quads;
+    gl.useProgram(Q.p);
+    gl.uniform1i(Q.loc.u_proj, 3);
+    gl.uniform2f(Q.loc.u_size, c.width, c.height);
+    gl.enable(gl.BLEND);
+    gl.blendFunc(gl.ONE, gl.ONE_MINUS_SRC_ALPHA);
+    gl.drawArrays(gl.TRIANGLES, 0, 6 * n);
     gl.bindVertexArray(null);
   }
 

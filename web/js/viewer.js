@@ -175,7 +175,7 @@ export class Viewer {
     this.frame.dataset.rendered = String(g.frames);
     if (!this.usesGl()) return;
     const text = `free camera · WebGL · ${g.drawCount.toLocaleString()} of ${g.count.toLocaleString()} splats` +
-      ` · ${g.canvas.width}×${g.canvas.height}` + (g.moving ? ' (moving: reduced)' : '') + (this.fly ? ' · fly (WASD/QE)' : '');
+      ` · ${g.drawnSize[0]}×${g.drawnSize[1]}` + (g.moving ? ' (moving: reduced)' : '') + (this.fly ? ' · fly (WASD/QE)' : '');
     if (this.caption.textContent !== text) this.caption.textContent = text;  // no relayout per frame
   }
 
@@ -233,6 +233,9 @@ export class Viewer {
     const sig = `${this.canvas.width}x${this.canvas.height}:${JSON.stringify(shown)}`;
     if (!shown.length && this.marksEmpty === sig) return;
     this.marksEmpty = shown.length ? null : sig;
+    // An empty overlay is not displayed: a transparent layer over the view still costs
+    // blending every frame in software compositing.
+    this.canvas.classList.toggle('hidden', !shown.length);
     const g = this.canvas.getContext('2d');
     g.clearRect(0, 0, this.canvas.width, this.canvas.height);
     for (const m of shown) {
