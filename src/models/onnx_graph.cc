@@ -24,6 +24,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "models/tensor_memory.h"
 
 namespace isegman::models {
 
@@ -1069,6 +1070,7 @@ struct OnnxGraph::Impl {
 };
 
 OnnxGraph::OnnxGraph(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  use_tensor_memory_pool();
   c10::InferenceMode guard;
   Impl& m = *impl_;
   m.model = load_onnx(path);
@@ -1285,7 +1287,8 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
   for (const auto& [name, t] : feeds)
     if (!m.slot_of.count(name)) throw Error(m.model.path, "the graph has no input named '" + name + "'");
   // ISEGMAN_ONNX_PROFILE=1 prints the time spent per operator type after each run.
-  static const bool profile = std::getenv("ISEGMAN_ONNX_PROFILE") != nullptr;
+  // ISEGMAN_ONNX_PROFILE=2 also prints every node with its input shapes and time.
+  static const int profile = std::getenv("ISEGMAN_ONNX_PROFILE") ? std::atoi(std::getenv("ISEGMAN_ONNX_PROFILE")) : 0;
   std::map<std::string, std::pair<double, int>> by_op;
   for (const auto& st : m.steps) {
     Ctx ctx{*st.node, m.model.opset, {}, {}};
@@ -1298,9 +1301,15 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
     double t0 = profile ? now_ms() : 0;
     m.execute(*st.node, *st.fn, ctx);
     if (profile) {
+      double dt = now_ms() - t0;
       auto& [ms, count] = by_op[st.node->op_type];
-      ms += now_ms() - t0;
+      ms += dt;
       ++count;
+      if (profile >= 2) {
+        std::ostringstream o;
+        for (const auto& t : ctx.in) o << " " << (t.defined() ? shape_str(t.sizes()) + (t.is_contiguous() ? "" : "s") : "-");
+        std::fprintf(stderr, "    %8.2f ms %-20s %s:%s\n", dt, st.node->op_type.c_str(), st.node->name.c_str(), o.str().c_str());
+      }
     }
     for (size_t i = 0; i < st.out.size(); ++i)
       if (st.out[i] >= 0) env[st.out[i]] = std::move(ctx.out[i]);
