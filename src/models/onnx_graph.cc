@@ -24,6 +24,8 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "models/gemm.h"
+#include "models/kernels.h"
 #include "models/tensor_memory.h"
 
 namespace isegman::models {
@@ -353,16 +355,6 @@ void conv_pads(const Ctx& c, const at::Tensor& x, const std::vector<int64_t>& ke
   }
 }
 
-// 1x1 convolution as one matrix product per image: [Co,Ci] x [Ci,HW].
-at::Tensor conv1x1(const at::Tensor& x, const at::Tensor& w, const at::Tensor& b) {
-  int64_t n = x.size(0), ci = x.size(1), h = x.size(2), wd = x.size(3), co = w.size(0);
-  at::Tensor w2 = w.reshape({co, ci});
-  at::Tensor x3 = x.reshape({n, ci, h * wd});
-  at::Tensor y = b.defined() ? at::baddbmm(b.reshape({1, co, 1}).expand({n, co, h * wd}), w2.unsqueeze(0).expand({n, co, ci}), x3)
-                             : at::matmul(w2, x3);
-  return y.reshape({n, co, h, wd});
-}
-
 // Depthwise convolution (one filter per channel), direct loops parallel over channels:
 // ATen's CPU path without oneDNN would run one tiny convolution per group.
 at::Tensor depthwise_conv2d(const at::Tensor& x0, const at::Tensor& w0, const at::Tensor& b0, const std::vector<int64_t>& stride,
@@ -474,7 +466,7 @@ void op_conv_transpose(Ctx& c) {
     // Non-overlapping kernels: y[n,o,i*s+a,j*s+b] = sum_c x[n,c,i,j] w[c,o,a,b] + bias[o].
     int64_t n = x.size(0), ci = x.size(1), h = x.size(2), wd = x.size(3), co = w.size(1), kh = kernel[0], kw = kernel[1];
     at::Tensor xt = x.permute({0, 2, 3, 1}).reshape({n * h * wd, ci});
-    at::Tensor y = at::mm(xt, w.reshape({ci, co * kh * kw}));
+    at::Tensor y = batched_matmul(xt, w.reshape({ci, co * kh * kw}));
     y = y.reshape({n, h, wd, co, kh, kw}).permute({0, 3, 1, 4, 2, 5}).reshape({n, co, h * kh, wd * kw});
     if (b.defined()) y = y + b.reshape({1, co, 1, 1});
     c.out = {y};
@@ -753,15 +745,38 @@ void op_pad(Ctx& c) {
 
 // ---------------------------------------------------------------- neural-network ops
 
-void op_matmul(Ctx& c) { c.out = {at::matmul(c.input(0), c.input(1))}; }
+void op_matmul(Ctx& c) { c.out = {batched_matmul(c.input(0), c.input(1))}; }
 
 void op_gemm(Ctx& c) {
-  at::Tensor a = c.input(0), b = c.input(1);
-  if (c.node.get_int("transA", 0)) a = a.t();
-  if (c.node.get_int("transB", 0)) b = b.t();
-  double alpha = c.node.get_float("alpha", 1.0f), beta = c.node.get_float("beta", 1.0f);
-  if (c.has(2)) c.out = {at::addmm(c.in[2], a, b, beta, alpha)};
-  else c.out = {alpha == 1.0 ? at::mm(a, b) : at::mm(a, b) * alpha};
+  const at::Tensor& a = c.input(0);
+  const at::Tensor& b = c.input(1);
+  bool ta = c.node.get_int("transA", 0) != 0, tb = c.node.get_int("transB", 0) != 0;
+  float alpha = c.node.get_float("alpha", 1.0f), beta = c.node.get_float("beta", 1.0f);
+  if (a.dim() != 2 || b.dim() != 2) throw OpError("Gemm needs 2-D inputs");
+  if (a.scalar_type() != at::kFloat || b.scalar_type() != at::kFloat) {
+    at::Tensor at = ta ? a.t() : a, bt = tb ? b.t() : b;
+    at::Tensor y = at::mm(at, bt) * alpha;
+    c.out = {c.has(2) ? y + c.in[2] * beta : y};
+    return;
+  }
+  at::Tensor A = a.contiguous(), B = b.contiguous();
+  int64_t m = ta ? A.size(1) : A.size(0), k = ta ? A.size(0) : A.size(1);
+  int64_t n = tb ? B.size(0) : B.size(1), kb = tb ? B.size(1) : B.size(0);
+  if (k != kb) throw OpError("inner dimensions differ");
+  at::Tensor y = at::empty({m, n}, A.options());
+  float accumulate = 0.0f;
+  if (c.has(2) && beta != 0.0f) {
+    y.copy_(c.in[2].expand({m, n}));
+    if (beta != 1.0f) y.mul_(beta);
+    accumulate = 1.0f;
+  }
+  if (k == 0) {
+    if (accumulate == 0.0f) y.zero_();
+  } else {
+    sgemm(ta, tb, m, n, k, alpha, A.data_ptr<float>(), A.size(1), B.data_ptr<float>(), B.size(1), accumulate,
+          y.data_ptr<float>(), n);
+  }
+  c.out = {y};
 }
 
 void op_softmax(Ctx& c, bool log) {
@@ -1005,9 +1020,8 @@ const OpFn& fused_linear() {
     const at::Tensor& w = c.input(1);
     const at::Tensor& b = c.input(2);
     if (x.dim() < 2 || x.size(-1) != w.size(0)) throw OpError("linear: inner dimensions differ");
-    std::vector<int64_t> shape = x.sizes().vec();
-    shape.back() = w.size(1);
-    c.out = {at::addmm(b, x.reshape({-1, w.size(0)}), w).reshape(shape)};
+    if (x.scalar_type() != at::kFloat) throw OpError("linear: input is not float");
+    c.out = {linear(x, w, b)};
   };
   return fn;
 }
@@ -1064,6 +1078,8 @@ struct OnnxGraph::Impl {
     } catch (const c10::Error& e) {
       std::string msg = e.what_without_backtrace();
       fail(n, msg.substr(0, msg.find('\n')), ctx.in);
+    } catch (const std::invalid_argument& e) {  // from kernels.cc
+      fail(n, e.what(), ctx.in);
     }
     if (ctx.out.size() < n.outputs.size()) fail(n, "produced fewer outputs than the node declares", ctx.in);
   }
