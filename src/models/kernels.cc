@@ -4,6 +4,9 @@
 #include <ATen/ATen.h>
 #include <ATen/Parallel.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -43,19 +46,92 @@ std::vector<int64_t> broadcast(std::vector<int64_t> a, std::vector<int64_t> b) {
   return a;
 }
 
+// Element offset of batch item i (row-major over `batch`) in a tensor expanded to it.
+int64_t batch_offset(const std::vector<int64_t>& batch, const at::Tensor& t, int64_t i) {
+  int64_t off = 0;
+  for (int64_t d = int64_t(batch.size()) - 1; d >= 0; --d) {
+    off += (i % batch[d]) * t.stride(d);
+    i /= batch[d];
+  }
+  return off;
+}
+
+std::vector<int64_t> with_matrix(std::vector<int64_t> batch, int64_t rows, int64_t cols) {
+  batch.push_back(rows);
+  batch.push_back(cols);
+  return batch;
+}
+
+std::vector<int64_t> batch_of(const at::Tensor& t) {
+  if (t.dim() < 2) return {};
+  return {t.sizes().begin(), t.sizes().end() - 2};
+}
+
+// exp(x) for the softmax: x = n ln2 + r with |r| <= ln2/2 (n rounded with the 1.5 * 2^23
+// trick, ln2 split in two for an exact n ln2), e^r by its Taylor series to r^7 (truncation
+// error < 1e-8 relative), 2^n built in the exponent bits. Written so the compiler vectorises
+// the loops that call it; inputs are clamped to [-87, 88] (results stay normal floats).
+inline float exp_for_softmax(float x) {
+  x = x < -87.0f ? -87.0f : (x > 88.0f ? 88.0f : x);
+  float t = x * 1.44269504088896341f;
+  float n = (t + 12582912.0f) - 12582912.0f;
+  float r = x - n * 0.693359375f + n * 2.12194440e-4f;
+  float p = 1.0f / 5040.0f;
+  p = p * r + 1.0f / 720.0f;
+  p = p * r + 1.0f / 120.0f;
+  p = p * r + 1.0f / 24.0f;
+  p = p * r + 1.0f / 6.0f;
+  p = p * r + 0.5f;
+  p = p * r + 1.0f;
+  p = p * r + 1.0f;
+  int32_t bits = (int32_t(n) + 127) << 23;
+  float two_n;
+  std::memcpy(&two_n, &bits, sizeof two_n);
+  return p * two_n;
+}
+
 }  // namespace
+
+void softmax_rows(float* x, int64_t rows, int64_t n, int64_t ld) {
+  constexpr int64_t L = 16;  // independent lanes, so max and sum vectorise without reordering doubts
+  for (int64_t r = 0; r < rows; ++r) {
+    float* row = x + r * ld;
+    float lane[L];
+    for (int64_t l = 0; l < L; ++l) lane[l] = -INFINITY;
+    int64_t j = 0;
+    for (; j + L <= n; j += L)
+      for (int64_t l = 0; l < L; ++l) lane[l] = std::max(lane[l], row[j + l]);
+    float m = -INFINITY;
+    for (int64_t l = 0; l < L; ++l) m = std::max(m, lane[l]);
+    for (; j < n; ++j) m = std::max(m, row[j]);
+    for (int64_t l = 0; l < L; ++l) lane[l] = 0.0f;
+    j = 0;
+    for (; j + L <= n; j += L)
+      for (int64_t l = 0; l < L; ++l) {
+        float e = exp_for_softmax(row[j + l] - m);
+        row[j + l] = e;
+        lane[l] += e;
+      }
+    float sum = 0.0f;
+    for (int64_t l = 0; l < L; ++l) sum += lane[l];
+    for (; j < n; ++j) {
+      float e = exp_for_softmax(row[j] - m);
+      row[j] = e;
+      sum += e;
+    }
+    float inv = 1.0f / sum;
+    for (j = 0; j < n; ++j) row[j] *= inv;
+  }
+}
 
 at::Tensor batched_matmul(const at::Tensor& a0, const at::Tensor& b0) {
   if (a0.dim() < 2 || b0.dim() < 2 || a0.scalar_type() != at::kFloat || b0.scalar_type() != at::kFloat)
     return at::matmul(a0, b0);
   int64_t m = a0.size(-2), k = a0.size(-1), n = b0.size(-1);
   if (b0.size(-2) != k) throw std::invalid_argument("matmul: inner dimensions differ");
-  std::vector<int64_t> batch = broadcast({a0.sizes().begin(), a0.sizes().end() - 2}, {b0.sizes().begin(), b0.sizes().end() - 2});
-  std::vector<int64_t> shape_a = batch, shape_b = batch, shape_c = batch;
-  shape_a.insert(shape_a.end(), {m, k});
-  shape_b.insert(shape_b.end(), {k, n});
-  shape_c.insert(shape_c.end(), {m, n});
-  at::Tensor a = a0.expand(shape_a), b = b0.expand(shape_b);  // batch strides 0 where broadcast
+  std::vector<int64_t> batch = broadcast(batch_of(a0), batch_of(b0));
+  std::vector<int64_t> shape_c = with_matrix(batch, m, n);
+  at::Tensor a = a0.expand(with_matrix(batch, m, k)), b = b0.expand(with_matrix(batch, k, n));  // batch strides 0 where broadcast
   MatrixLayout la, lb;
   if (!layout_of(a, la)) a = a.contiguous(), layout_of(a, la);
   if (!layout_of(b, lb)) b = b.contiguous(), layout_of(b, lb);
@@ -68,14 +144,8 @@ at::Tensor batched_matmul(const at::Tensor& a0, const at::Tensor& b0) {
   const float* pb = b.data_ptr<float>();
   float* pc = c.data_ptr<float>();
   auto run = [&](int64_t i) {
-    int64_t oa = 0, ob = 0, rest = i;
-    for (int64_t d = int64_t(batch.size()) - 1; d >= 0; --d) {
-      int64_t idx = rest % batch[d];
-      rest /= batch[d];
-      oa += idx * a.stride(d);
-      ob += idx * b.stride(d);
-    }
-    sgemm(la.transposed, lb.transposed, m, n, k, 1.0f, pa + oa, la.ld, pb + ob, lb.ld, 0.0f, pc + i * m * n, n);
+    sgemm(la.transposed, lb.transposed, m, n, k, 1.0f, pa + batch_offset(batch, a, i), la.ld, pb + batch_offset(batch, b, i),
+          lb.ld, 0.0f, pc + i * m * n, n);
   };
   if (count == 1) {
     run(0);  // one product: sgemm uses all threads itself
@@ -121,6 +191,72 @@ at::Tensor conv1x1(const at::Tensor& x0, const at::Tensor& w0, const at::Tensor&
     sgemm(false, false, co, hw, ci, 1.0f, w.data_ptr<float>(), ci, x.data_ptr<float>() + i * ci * hw, hw, beta,
           y.data_ptr<float>() + i * co * hw, hw);
   return y;
+}
+
+}  // namespace isegman::models
+
+namespace isegman::models {
+
+at::Tensor attention(const at::Tensor& q0, const at::Tensor& kt0, const at::Tensor& v0, double scale, const at::Tensor& bias0) {
+  int64_t m = q0.size(-2), k = q0.size(-1), n = kt0.size(-1), d = v0.size(-1);
+  if (kt0.size(-2) != k || v0.size(-2) != n) throw std::invalid_argument("attention: inner dimensions differ");
+  std::vector<int64_t> batch = broadcast(broadcast(batch_of(q0), batch_of(kt0)), batch_of(v0));
+  at::Tensor bias;
+  if (bias0.defined()) {
+    // The bias broadcasts against [batch..., m, n]; its matrix part must have unit column stride.
+    std::vector<int64_t> full = broadcast(with_matrix(batch, m, n), bias0.sizes().vec());
+    batch.assign(full.begin(), full.end() - 2);
+    if (full[full.size() - 2] != m || full.back() != n) throw std::invalid_argument("attention: bias does not broadcast");
+    bias = bias0.expand(full);
+    if (bias.stride(-1) != 1 && n > 1) bias = bias0.contiguous().expand(full);
+  }
+  at::Tensor q = q0.expand(with_matrix(batch, m, k)), kt = kt0.expand(with_matrix(batch, k, n)),
+             v = v0.expand(with_matrix(batch, n, d));
+  MatrixLayout lq, lk, lv;
+  if (!layout_of(q, lq)) q = q.contiguous(), layout_of(q, lq);
+  if (!layout_of(kt, lk)) kt = kt.contiguous(), layout_of(kt, lk);
+  if (!layout_of(v, lv)) v = v.contiguous(), layout_of(v, lv);
+  at::Tensor out = at::empty(with_matrix(batch, m, d), q0.options());
+  int64_t count = 1;
+  for (int64_t b : batch) count *= b;
+  if (out.numel() == 0) return out;
+  if (n == 0) return out.fill_(NAN);  // softmax over nothing
+  // Work unit: `rows` score rows of one batch item (about 64 KiB of scores, cache-resident).
+  int64_t rows = std::clamp<int64_t>(16384 / n, 1, m);
+  int64_t tiles = (m + rows - 1) / rows;
+  const float* pq = q.data_ptr<float>();
+  const float* pk = kt.data_ptr<float>();
+  const float* pv = v.data_ptr<float>();
+  const float* pb = bias.defined() ? bias.data_ptr<float>() : nullptr;
+  float* po = out.data_ptr<float>();
+  // Row r of q's matrix starts at r * row step (row-major: ld; transposed: 1).
+  int64_t q_row = lq.transposed ? 1 : lq.ld;
+  at::parallel_for(0, count * tiles, 1, [&](int64_t begin, int64_t end) {
+    std::vector<float> scores(size_t(rows * n));
+    for (int64_t unit = begin; unit < end; ++unit) {
+      int64_t item = unit / tiles, r0 = (unit % tiles) * rows, nr = std::min(rows, m - r0);
+      float* s = scores.data();
+      sgemm(lq.transposed, lk.transposed, nr, n, k, float(scale), pq + batch_offset(batch, q, item) + r0 * q_row, lq.ld,
+            pk + batch_offset(batch, kt, item), lk.ld, 0.0f, s, n);
+      if (pb) {
+        const float* b = pb + batch_offset(batch, bias, item);
+        int64_t brs = bias.stride(-2), bcs = bias.stride(-1);
+        for (int64_t r = 0; r < nr; ++r) {
+          const float* brow = b + (r0 + r) * brs;
+          float* srow = s + r * n;
+          if (bcs == 1) {
+            for (int64_t j = 0; j < n; ++j) srow[j] += brow[j];
+          } else {
+            for (int64_t j = 0; j < n; ++j) srow[j] += brow[j * bcs];
+          }
+        }
+      }
+      softmax_rows(s, nr, n, n);
+      sgemm(false, lv.transposed, nr, d, n, 1.0f, s, n, pv + batch_offset(batch, v, item), lv.ld, 0.0f,
+            po + (item * m + r0) * d, d);
+    }
+  });
+  return out;
 }
 
 }  // namespace isegman::models
