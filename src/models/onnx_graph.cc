@@ -1203,10 +1203,16 @@ struct OnnxGraph::Impl::Fusion {
   }
   const std::string& op(int i) const { return g.steps[i].node->op_type; }
   int out(int i) const { return g.steps[i].out[0]; }
-  // The one consumer of an intermediate, or -1.
+  // The one live consumer of an intermediate, or -1.
   int single(int s) const {
-    if (s < 0 || is_output[s] || consumers[s].size() != 1 || dead[consumers[s][0]]) return -1;
-    return consumers[s][0];
+    if (s < 0 || is_output[s]) return -1;
+    int found = -1;
+    for (int c : consumers[s]) {
+      if (dead[c] || c == found) continue;
+      if (found >= 0) return -1;
+      found = c;
+    }
+    return found;
   }
   // The other input of a binary step that reads s, or -2.
   int other(int i, int s) const {
@@ -1229,6 +1235,8 @@ struct OnnxGraph::Impl::Fusion {
     g.fused_nodes.push_back(std::move(node));
     g.steps[last] = Step{&g.fused_nodes.back(), &fn, in, {g.steps[last].out[0]}, {}};
     for (int i : gone) dead[i] = 1;
+    for (int s : in)
+      if (s >= 0) consumers[s].push_back(last);
   }
 
   void gelu();
@@ -1459,7 +1467,9 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
     double total = 0, total_cpu = 0;
     for (const auto& [op, v] : by_op) rows.emplace_back(v.cpu, op), total += v.wall, total_cpu += v.cpu;
     std::sort(rows.rbegin(), rows.rend());
-    std::fprintf(stderr, "%s: %.1f ms (%.1f ms CPU) in %zu nodes\n", m.model.path.c_str(), total, total_cpu, m.steps.size());
+    std::fprintf(stderr, "%s: %.1f ms (%.1f ms CPU) in %zu nodes; tensor pool: %zu mappings so far, %.0f MiB cached\n",
+                 m.model.path.c_str(), total, total_cpu, m.steps.size(), tensor_memory_pool_mappings(),
+                 double(tensor_memory_pool_cached_bytes()) / (1 << 20));
     for (const auto& [cpu, op] : rows)
       std::fprintf(stderr, "  %-20s %8.2f ms %8.2f ms CPU %5d nodes\n", op.c_str(), by_op[op].wall, cpu, by_op[op].count);
   }

@@ -35,7 +35,10 @@ class PooledCpuAllocator final : public c10::Allocator {
     size_t size = round_up(n, kHugePage);
     std::lock_guard<std::mutex> lock(mutex_);
     void* p = take(size);
-    if (!p) p = map(size);
+    if (!p) {
+      p = map(size);
+      ++maps_;
+    }
     live_[p] = size;
     return {p, p, &PooledCpuAllocator::release, c10::Device(c10::DeviceType::CPU)};
   }
@@ -45,6 +48,10 @@ class PooledCpuAllocator final : public c10::Allocator {
   size_t cached_bytes() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return cached_;
+  }
+  size_t maps() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return maps_;
   }
 
  private:
@@ -97,6 +104,7 @@ class PooledCpuAllocator final : public c10::Allocator {
   mutable std::unordered_map<void*, size_t> live_;  // large blocks in use, by address
   mutable std::multimap<size_t, void*> free_;        // large blocks kept for reuse, by size
   mutable size_t cached_ = 0;
+  mutable size_t maps_ = 0;  // fresh mappings made so far
 };
 
 PooledCpuAllocator* pool = nullptr;
@@ -120,5 +128,7 @@ void use_tensor_memory_pool() {
 }
 
 size_t tensor_memory_pool_cached_bytes() { return pool ? pool->cached_bytes() : 0; }
+
+size_t tensor_memory_pool_mappings() { return pool ? pool->maps() : 0; }
 
 }  // namespace isegman::models

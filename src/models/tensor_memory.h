@@ -17,5 +17,7 @@ void use_tensor_memory_pool();
 
 // Bytes the pool currently keeps for reuse (0 when it is not installed).
 size_t tensor_memory_pool_cached_bytes();
+// Fresh mappings the pool has made so far (each costs page faults on first touch).
+size_t tensor_memory_pool_mappings();
 
 }  // namespace isegman::models
