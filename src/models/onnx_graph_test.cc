@@ -13,6 +13,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "models/tensor_memory.h"
 
 using namespace isegman;
 using namespace isegman::models;
@@ -441,4 +442,26 @@ TEST(OnnxGraph, FusedAttentionKeepsSoftmaxOverOtherAxes) {
   std::map<std::string, HostTensor> feeds = {
       {"q", random_tensor({2, 3, 5, 4}, 10)}, {"kt", random_tensor({2, 3, 4, 5}, 11)}, {"v", random_tensor({2, 3, 5, 4}, 12)}};
   expect_close(g.fused->run(feeds)["y"], g.plain->run(feeds)["y"], 1e-5);
+}
+
+// Large intermediates come from the tensor pool, and a second run reuses its blocks
+// instead of mapping (and page-faulting) fresh memory.
+TEST(TensorMemory, SecondRunReusesLargeBlocks) {
+  if (std::getenv("ISEGMAN_ONNX_NO_POOL")) GTEST_SKIP() << "ISEGMAN_ONNX_NO_POOL is set";
+  Builder b;
+  b.input("x", {512, 1024});  // 2 MiB per tensor
+  b.output("y");
+  b.node("Mul", {"x", "x"}, {"sq"});
+  b.node("Add", {"sq", "x"}, {"s"});
+  b.node("Relu", {"s"}, {"y"});
+  Graph g(b);
+  HostTensor x = random_tensor({512, 1024}, 13);
+  g.g->run({{"x", x}});
+  size_t maps = tensor_memory_pool_mappings();
+  EXPECT_GT(maps, 0u);
+  EXPECT_GT(tensor_memory_pool_cached_bytes(), 0u);
+  auto out = g.g->run({{"x", x}});
+  EXPECT_EQ(tensor_memory_pool_mappings(), maps);
+  std::vector<float> xv = floats_of(x), y = floats_of(out["y"]);
+  for (size_t i = 0; i < y.size(); i += 4099) EXPECT_NEAR(y[i], std::max(0.0f, xv[i] * xv[i] + xv[i]), 1e-5);
 }
