@@ -1112,7 +1112,7 @@ struct OnnxGraph::Impl {
     } catch (const c10::Error& e) {
       std::string msg = e.what_without_backtrace();
       fail(n, msg.substr(0, msg.find('\n')), ctx.in);
-    } catch (const std::invalid_argument& e) {  // from kernels.cc
+    } catch (const std::exception& e) {  // kernels.cc / gemm.cc (bad shapes, a failed sgemm)
       fail(n, e.what(), ctx.in);
     }
     if (ctx.out.size() < n.outputs.size()) fail(n, "produced fewer outputs than the node declares", ctx.in);

@@ -465,3 +465,19 @@ TEST(TensorMemory, SecondRunReusesLargeBlocks) {
   std::vector<float> xv = floats_of(x), y = floats_of(out["y"]);
   for (size_t i = 0; i < y.size(); i += 4099) EXPECT_NEAR(y[i], std::max(0.0f, xv[i] * xv[i] + xv[i]), 1e-5);
 }
+
+// An empty inner axis: the product is all zeros (and Gemm adds its C).
+TEST(OnnxGraph, MatMulAndGemmWithEmptyInnerAxis) {
+  Builder b;
+  b.input("a", {2, 0});
+  b.input("b", {0, 3});
+  b.floats("c", {3}, {1, 2, 3});
+  b.output("y");
+  b.output("z");
+  b.node("MatMul", {"a", "b"}, {"y"});
+  b.node("Gemm", {"a", "b", "c"}, {"z"});
+  Graph g(b);
+  auto out = g.g->run({{"a", HostTensor::from_floats({2, 0}, {})}, {"b", HostTensor::from_floats({0, 3}, {})}});
+  EXPECT_EQ(floats_of(out["y"]), (std::vector<float>(6, 0.0f)));
+  EXPECT_EQ(floats_of(out["z"]), (std::vector<float>{1, 2, 3, 1, 2, 3}));
+}
