@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cmath>
 #include <cstdlib>
+#include <ctime>
 #include <deque>
 #include <functional>
 #include <mutex>
@@ -24,6 +25,9 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "models/gemm.h"
+#include "models/kernels.h"
+#include "models/tensor_memory.h"
 
 namespace isegman::models {
 
@@ -56,6 +60,12 @@ namespace {
 
 double now_ms() {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double cpu_ms() {  // CPU time of the whole process (every thread)
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
 }
 
 // An operator-level failure; the run loop adds the model file and the node.
@@ -352,16 +362,6 @@ void conv_pads(const Ctx& c, const at::Tensor& x, const std::vector<int64_t>& ke
   }
 }
 
-// 1x1 convolution as one matrix product per image: [Co,Ci] x [Ci,HW].
-at::Tensor conv1x1(const at::Tensor& x, const at::Tensor& w, const at::Tensor& b) {
-  int64_t n = x.size(0), ci = x.size(1), h = x.size(2), wd = x.size(3), co = w.size(0);
-  at::Tensor w2 = w.reshape({co, ci});
-  at::Tensor x3 = x.reshape({n, ci, h * wd});
-  at::Tensor y = b.defined() ? at::baddbmm(b.reshape({1, co, 1}).expand({n, co, h * wd}), w2.unsqueeze(0).expand({n, co, ci}), x3)
-                             : at::matmul(w2, x3);
-  return y.reshape({n, co, h, wd});
-}
-
 // Depthwise convolution (one filter per channel), direct loops parallel over channels:
 // ATen's CPU path without oneDNN would run one tiny convolution per group.
 at::Tensor depthwise_conv2d(const at::Tensor& x0, const at::Tensor& w0, const at::Tensor& b0, const std::vector<int64_t>& stride,
@@ -380,7 +380,6 @@ at::Tensor depthwise_conv2d(const at::Tensor& x0, const at::Tensor& w0, const at
   float* yp = y.data_ptr<float>();
   int64_t sy = stride[0], sx = stride[1], py = pad[0], px = pad[1], dy = dil[0], dx = dil[1];
   at::parallel_for(0, n * ch, 1, [&](int64_t begin, int64_t end) {
-    std::vector<float> row(size_t(ow));
     for (int64_t nc = begin; nc < end; ++nc) {
       int64_t c = nc % ch;
       const float* in = xp + nc * h * wd;
@@ -473,7 +472,7 @@ void op_conv_transpose(Ctx& c) {
     // Non-overlapping kernels: y[n,o,i*s+a,j*s+b] = sum_c x[n,c,i,j] w[c,o,a,b] + bias[o].
     int64_t n = x.size(0), ci = x.size(1), h = x.size(2), wd = x.size(3), co = w.size(1), kh = kernel[0], kw = kernel[1];
     at::Tensor xt = x.permute({0, 2, 3, 1}).reshape({n * h * wd, ci});
-    at::Tensor y = at::mm(xt, w.reshape({ci, co * kh * kw}));
+    at::Tensor y = batched_matmul(xt, w.reshape({ci, co * kh * kw}));
     y = y.reshape({n, h, wd, co, kh, kw}).permute({0, 3, 1, 4, 2, 5}).reshape({n, co, h * kh, wd * kw});
     if (b.defined()) y = y + b.reshape({1, co, 1, 1});
     c.out = {y};
@@ -752,33 +751,53 @@ void op_pad(Ctx& c) {
 
 // ---------------------------------------------------------------- neural-network ops
 
-void op_matmul(Ctx& c) { c.out = {at::matmul(c.input(0), c.input(1))}; }
+void op_matmul(Ctx& c) { c.out = {batched_matmul(c.input(0), c.input(1))}; }
 
 void op_gemm(Ctx& c) {
-  at::Tensor a = c.input(0), b = c.input(1);
-  if (c.node.get_int("transA", 0)) a = a.t();
-  if (c.node.get_int("transB", 0)) b = b.t();
-  double alpha = c.node.get_float("alpha", 1.0f), beta = c.node.get_float("beta", 1.0f);
-  if (c.has(2)) c.out = {at::addmm(c.in[2], a, b, beta, alpha)};
-  else c.out = {alpha == 1.0 ? at::mm(a, b) : at::mm(a, b) * alpha};
+  const at::Tensor& a = c.input(0);
+  const at::Tensor& b = c.input(1);
+  bool ta = c.node.get_int("transA", 0) != 0, tb = c.node.get_int("transB", 0) != 0;
+  float alpha = c.node.get_float("alpha", 1.0f), beta = c.node.get_float("beta", 1.0f);
+  if (a.dim() != 2 || b.dim() != 2) throw OpError("Gemm needs 2-D inputs");
+  if (a.scalar_type() != at::kFloat || b.scalar_type() != at::kFloat) {
+    at::Tensor at = ta ? a.t() : a, bt = tb ? b.t() : b;
+    at::Tensor y = at::mm(at, bt) * alpha;
+    c.out = {c.has(2) ? y + c.in[2] * beta : y};
+    return;
+  }
+  at::Tensor A = a.contiguous(), B = b.contiguous();
+  int64_t m = ta ? A.size(1) : A.size(0), k = ta ? A.size(0) : A.size(1);
+  int64_t n = tb ? B.size(0) : B.size(1), kb = tb ? B.size(1) : B.size(0);
+  if (k != kb) throw OpError("inner dimensions differ");
+  at::Tensor y = at::empty({m, n}, A.options());
+  float accumulate = 0.0f;
+  if (c.has(2) && beta != 0.0f) {
+    y.copy_(c.in[2].expand({m, n}));
+    if (beta != 1.0f) y.mul_(beta);
+    accumulate = 1.0f;
+  }
+  if (k == 0) {
+    if (accumulate == 0.0f) y.zero_();
+  } else {
+    sgemm(ta, tb, m, n, k, alpha, A.data_ptr<float>(), A.size(1), B.data_ptr<float>(), B.size(1), accumulate,
+          y.data_ptr<float>(), n);
+  }
+  c.out = {y};
 }
 
-void op_softmax(Ctx& c, bool log) {
-  const at::Tensor& x = c.input(0);
-  if (c.opset >= 13) {
-    int64_t axis = norm_axis(c.node.get_int("axis", -1), x.dim());
-    c.out = {log ? at::log_softmax(x, axis) : at::softmax(x, axis)};
-    return;
-  }
-  int64_t axis = norm_axis(c.node.get_int("axis", 1), x.dim());
-  if (axis == x.dim() - 1) {
-    c.out = {log ? at::log_softmax(x, axis) : at::softmax(x, axis)};
-    return;
-  }
+// ONNX Softmax / LogSoftmax: from opset 13 over one axis; before, over the flattened axes
+// from `axis` on (the same thing when axis is the last one).
+at::Tensor onnx_softmax(const at::Tensor& x, int64_t axis_attr, int64_t opset, bool log) {
+  int64_t axis = norm_axis(axis_attr, x.dim());
+  if (opset >= 13 || axis == x.dim() - 1) return log ? at::log_softmax(x, axis) : at::softmax(x, axis);
   int64_t rows = 1;
   for (int64_t i = 0; i < axis; ++i) rows *= x.size(i);
   at::Tensor f = x.reshape({rows, -1});
-  c.out = {(log ? at::log_softmax(f, 1) : at::softmax(f, 1)).reshape(x.sizes())};
+  return (log ? at::log_softmax(f, 1) : at::softmax(f, 1)).reshape(x.sizes());
+}
+
+void op_softmax(Ctx& c, bool log) {
+  c.out = {onnx_softmax(c.input(0), c.node.get_int("axis", c.opset >= 13 ? -1 : 1), c.opset, log)};
 }
 
 void op_layer_norm(Ctx& c) {
@@ -1004,9 +1023,37 @@ const OpFn& fused_linear() {
     const at::Tensor& w = c.input(1);
     const at::Tensor& b = c.input(2);
     if (x.dim() < 2 || x.size(-1) != w.size(0)) throw OpError("linear: inner dimensions differ");
-    std::vector<int64_t> shape = x.sizes().vec();
-    shape.back() = w.size(1);
-    c.out = {at::addmm(b, x.reshape({-1, w.size(0)}), w).reshape(shape)};
+    if (x.scalar_type() != at::kFloat) throw OpError("linear: input is not float");
+    c.out = {linear(x, w, b)};
+  };
+  return fn;
+}
+
+const OpFn& fused_attention() {
+  // softmax(q @ kT (* or / scale) (+ bias)) @ v; inputs q, kT, v, scale (optional, one
+  // element), bias (optional). Softmax over the last axis runs the fused kernel; any other
+  // axis runs the original operators one by one.
+  static const OpFn fn = [](Ctx& c) {
+    const at::Tensor& q = c.input(0);
+    const at::Tensor& kt = c.input(1);
+    const at::Tensor& v = c.input(2);
+    at::Tensor scale = c.has(3) ? c.in[3] : at::Tensor();
+    at::Tensor bias = c.has(4) ? c.in[4] : at::Tensor();
+    bool divide = c.node.get_int("divide", 0) != 0;
+    int64_t axis_attr = c.node.get_int("softmax_axis", -1);
+    int64_t rank = std::max({q.dim(), kt.dim(), bias.defined() ? bias.dim() : 0});
+    bool fast = q.dim() >= 2 && kt.dim() >= 2 && v.dim() >= 2 && norm_axis(axis_attr, rank) == rank - 1 &&
+                q.scalar_type() == at::kFloat && kt.scalar_type() == at::kFloat && v.scalar_type() == at::kFloat &&
+                (!bias.defined() || bias.scalar_type() == at::kFloat) && (!scale.defined() || scale.numel() == 1);
+    if (fast) {
+      double s = scale.defined() ? scalar_of(scale) : 1.0;
+      c.out = {attention(q, kt, v, divide ? 1.0 / s : s, bias)};
+      return;
+    }
+    at::Tensor x = batched_matmul(q, kt);
+    if (scale.defined()) x = divide ? onnx_div(x, scale) : x * scale;
+    if (bias.defined()) x = x + bias;
+    c.out = {batched_matmul(onnx_softmax(x, axis_attr, c.opset, false), v)};
   };
   return fn;
 }
@@ -1033,7 +1080,9 @@ struct OnnxGraph::Impl {
     if (s < 0 || !constants[s].defined() || constants[s].numel() != 1) return false;
     return std::fabs(constants[s].to(at::kDouble).reshape({-1})[0].item<double>() - v) < tol;
   }
+  struct Fusion;
   void fuse();
+  int64_t opset() const { return model.opset; }
 
   int slot(const std::string& name) {
     auto it = slot_of.find(name);
@@ -1063,12 +1112,15 @@ struct OnnxGraph::Impl {
     } catch (const c10::Error& e) {
       std::string msg = e.what_without_backtrace();
       fail(n, msg.substr(0, msg.find('\n')), ctx.in);
+    } catch (const std::exception& e) {  // kernels.cc / gemm.cc (bad shapes, a failed sgemm)
+      fail(n, e.what(), ctx.in);
     }
     if (ctx.out.size() < n.outputs.size()) fail(n, "produced fewer outputs than the node declares", ctx.in);
   }
 };
 
 OnnxGraph::OnnxGraph(const std::string& path) : impl_(std::make_unique<Impl>()) {
+  use_tensor_memory_pool();
   c10::InferenceMode guard;
   Impl& m = *impl_;
   m.model = load_onnx(path);
@@ -1126,132 +1178,222 @@ OnnxGraph::OnnxGraph(const std::string& path) : impl_(std::make_unique<Impl>()) 
     if (!used[s]) m.constants[s] = at::Tensor();
 }
 
-// Rewrites two patterns that exporters spell out op by op into single ATen calls:
-//   x / sqrt(2) -> Erf -> +1 -> *x -> *0.5       => Gelu(x)           (exact erf GELU)
-//   MatMul(x, W const) -> Add(b const)           => addmm(b, x, W)
-// Only chains whose intermediates have no other consumer are rewritten.
-void OnnxGraph::Impl::fuse() {
-  if (std::getenv("ISEGMAN_ONNX_NO_FUSION")) return;
-  std::vector<std::vector<int>> consumers(slots);
-  std::vector<int> producer(slots, -1);
-  for (size_t i = 0; i < steps.size(); ++i) {
-    for (int s : steps[i].in)
-      if (s >= 0) consumers[s].push_back(int(i));
-    for (int s : steps[i].out)
-      if (s >= 0) producer[s] = int(i);
+// ---------------------------------------------------------------- fusion pass
+//
+// Rewrites patterns that exporters spell out op by op into single kernels. Each fusion is
+// one function below; a rewritten chain becomes one step in place of its last node, and
+// only chains whose intermediates have no other consumer are rewritten.
+// ISEGMAN_ONNX_NO_FUSION=1 turns every fusion off (tests compare both ways).
+
+struct OnnxGraph::Impl::Fusion {
+  Impl& g;
+  std::vector<std::vector<int>> consumers;  // by slot: the steps that read it
+  std::vector<int> producer;                // by slot: the step that writes it, or -1
+  std::vector<char> is_output, dead;
+
+  explicit Fusion(Impl& graph) : g(graph), consumers(graph.slots), producer(graph.slots, -1), is_output(graph.slots, 0),
+                                 dead(graph.steps.size(), 0) {
+    for (size_t i = 0; i < g.steps.size(); ++i) {
+      for (int s : g.steps[i].in)
+        if (s >= 0) consumers[s].push_back(int(i));
+      for (int s : g.steps[i].out)
+        if (s >= 0) producer[s] = int(i);
+    }
+    for (const auto& [name, s] : g.output_slots) is_output[s] = 1;
   }
-  std::vector<char> is_output(slots, 0);
-  for (const auto& [name, s] : output_slots) is_output[s] = 1;
-  auto single = [&](int s) -> int {  // the one consumer of an intermediate, or -1
-    if (s < 0 || is_output[s] || consumers[s].size() != 1) return -1;
-    return consumers[s][0];
-  };
-  auto op = [&](int i) -> const std::string& { return steps[i].node->op_type; };
-  auto other = [&](int i, int s) -> int {  // the other input of a binary step
-    const auto& in = steps[i].in;
+  const std::string& op(int i) const { return g.steps[i].node->op_type; }
+  int out(int i) const { return g.steps[i].out[0]; }
+  // The one live consumer of an intermediate, or -1.
+  int single(int s) const {
+    if (s < 0 || is_output[s]) return -1;
+    int found = -1;
+    for (int c : consumers[s]) {
+      if (dead[c] || c == found) continue;
+      if (found >= 0) return -1;
+      found = c;
+    }
+    return found;
+  }
+  // The other input of a binary step that reads s, or -2.
+  int other(int i, int s) const {
+    const auto& in = g.steps[i].in;
     if (in.size() != 2) return -2;
     return in[0] == s ? in[1] : in[1] == s ? in[0] : -2;
-  };
-  std::vector<char> dead(steps.size(), 0);
-  const OpFn& gelu = registry().at("Gelu");
-  for (size_t e = 0; e < steps.size(); ++e) {
-    if (op(int(e)) != "Erf" || dead[e]) continue;
-    int scaled = steps[e].in[0];
-    int d = scaled >= 0 ? producer[scaled] : -1;
-    if (d < 0 || single(scaled) != int(e)) continue;
-    int x = -1;
-    if (op(d) == "Div" && const_scalar(steps[d].in[1], std::sqrt(2.0), 1e-3)) x = steps[d].in[0];
-    if (op(d) == "Mul" && const_scalar(steps[d].in[1], std::sqrt(0.5), 1e-3)) x = steps[d].in[0];
-    if (x < 0) continue;
-    int a = single(steps[e].out[0]);
-    if (a < 0 || op(a) != "Add" || !const_scalar(other(a, steps[e].out[0]), 1.0, 1e-6)) continue;
-    int m1 = single(steps[a].out[0]);
-    if (m1 < 0 || op(m1) != "Mul" || other(m1, steps[a].out[0]) != x) continue;
-    int m2 = single(steps[m1].out[0]);
-    if (m2 < 0 || op(m2) != "Mul" || !const_scalar(other(m2, steps[m1].out[0]), 0.5, 1e-6)) continue;
-    Node n;
-    n.name = steps[e].node->name + "+gelu";
-    n.op_type = "Gelu";
-    n.inputs = {steps[d].node->inputs[0]};
-    n.outputs = {steps[m2].node->outputs[0]};
-    fused_nodes.push_back(n);
-    steps[m2] = Step{&fused_nodes.back(), &gelu, {x}, {steps[m2].out[0]}, {}};
-    dead[d] = dead[e] = dead[a] = dead[m1] = 1;
   }
-  // LayerNorm over the last axis, spelled out: m = mean(x); d = x - m; v = mean(d^2);
-  // y = d / sqrt(v + eps) * gamma + beta.
-  const OpFn& layer_norm = registry().at("LayerNormalization");
+  bool is_const(int s) const { return s >= 0 && g.constants[s].defined(); }
+  const std::string& name_of(int s) const {  // a slot's value name (for fused nodes' labels)
+    for (const auto& [name, slot] : g.slot_of)
+      if (slot == s) return name;
+    static const std::string none;
+    return none;
+  }
+  // Replaces step `last` with a fused step and marks `gone` dead.
+  void replace(int last, Node node, const OpFn& fn, const std::vector<int>& in, const std::vector<int>& gone) {
+    node.outputs = {g.steps[last].node->outputs[0]};
+    node.inputs.clear();
+    for (int s : in) node.inputs.push_back(s < 0 ? std::string() : name_of(s));
+    g.fused_nodes.push_back(std::move(node));
+    g.steps[last] = Step{&g.fused_nodes.back(), &fn, in, {g.steps[last].out[0]}, {}};
+    for (int i : gone) dead[i] = 1;
+    for (int s : in)
+      if (s >= 0) consumers[s].push_back(last);
+  }
+
+  void gelu();
+  void layer_norm();
+  void attention();
+  void linear();
+};
+
+Node fused_node(const Node& from, const std::string& suffix, const std::string& op_type) {
+  Node n;
+  n.name = from.name + "+" + suffix;
+  n.op_type = op_type;
+  return n;
+}
+
+void OnnxGraph::Impl::fuse() {
+  if (std::getenv("ISEGMAN_ONNX_NO_FUSION")) return;
+  Fusion f(*this);
+  f.gelu();
+  f.layer_norm();
+  f.attention();
+  f.linear();
+  std::vector<Step> kept;
+  for (size_t i = 0; i < steps.size(); ++i)
+    if (!f.dead[i]) kept.push_back(std::move(steps[i]));
+  steps = std::move(kept);
+}
+
+// Exact (erf) GELU, x / sqrt(2) -> Erf -> +1 -> *x -> *0.5, into at::gelu: one pass over
+// the tensor instead of five.
+void OnnxGraph::Impl::Fusion::gelu() {
+  const OpFn& fn = registry().at("Gelu");
+  for (int e = 0; e < int(g.steps.size()); ++e) {
+    if (dead[e] || op(e) != "Erf") continue;
+    int scaled = g.steps[e].in[0];
+    int d = scaled >= 0 ? producer[scaled] : -1;
+    if (d < 0 || single(scaled) != e) continue;
+    int x = -1;
+    if (op(d) == "Div" && g.const_scalar(g.steps[d].in[1], std::sqrt(2.0), 1e-3)) x = g.steps[d].in[0];
+    if (op(d) == "Mul" && g.const_scalar(g.steps[d].in[1], std::sqrt(0.5), 1e-3)) x = g.steps[d].in[0];
+    if (x < 0) continue;
+    int a = single(out(e));
+    if (a < 0 || op(a) != "Add" || !g.const_scalar(other(a, out(e)), 1.0, 1e-6)) continue;
+    int m1 = single(out(a));
+    if (m1 < 0 || op(m1) != "Mul" || other(m1, out(a)) != x) continue;
+    int m2 = single(out(m1));
+    if (m2 < 0 || op(m2) != "Mul" || !g.const_scalar(other(m2, out(m1)), 0.5, 1e-6)) continue;
+    replace(m2, fused_node(*g.steps[e].node, "gelu", "Gelu"), fn, {x}, {d, e, a, m1});
+  }
+}
+
+// LayerNorm over the last axis, spelled out (opset < 17 exports): m = mean(x); d = x - m;
+// v = mean(d^2); y = d / sqrt(v + eps) * gamma + beta, into at::layer_norm.
+void OnnxGraph::Impl::Fusion::layer_norm() {
+  const OpFn& fn = registry().at("LayerNormalization");
   auto last_axis_mean = [&](int i) {
-    return op(i) == "ReduceMean" && steps[i].in.size() == 1 && steps[i].node->get_ints("axes", {}) == std::vector<int64_t>{-1} &&
-           steps[i].node->get_int("keepdims", 1) == 1;
+    return op(i) == "ReduceMean" && g.steps[i].in.size() == 1 &&
+           g.steps[i].node->get_ints("axes", {}) == std::vector<int64_t>{-1} && g.steps[i].node->get_int("keepdims", 1) == 1;
   };
-  for (size_t r1 = 0; r1 < steps.size(); ++r1) {
-    if (dead[r1] || !last_axis_mean(int(r1))) continue;
-    int x = steps[r1].in[0];
-    int sub = single(steps[r1].out[0]);
-    if (sub < 0 || op(sub) != "Sub" || steps[sub].in[0] != x || steps[sub].in[1] != steps[r1].out[0]) continue;
-    int d = steps[sub].out[0];
+  for (int r1 = 0; r1 < int(g.steps.size()); ++r1) {
+    if (dead[r1] || !last_axis_mean(r1)) continue;
+    int x = g.steps[r1].in[0];
+    int sub = single(out(r1));
+    if (sub < 0 || op(sub) != "Sub" || g.steps[sub].in[0] != x || g.steps[sub].in[1] != out(r1)) continue;
+    int d = out(sub);
     if (is_output[d] || consumers[d].size() != 2) continue;
     int pw = consumers[d][0], dv = consumers[d][1];
     if (op(pw) != "Pow") std::swap(pw, dv);
-    if (op(pw) != "Pow" || op(dv) != "Div" || steps[pw].in[0] != d || !const_scalar(steps[pw].in[1], 2.0, 1e-9) ||
-        steps[dv].in[0] != d)
+    if (op(pw) != "Pow" || op(dv) != "Div" || g.steps[pw].in[0] != d || !g.const_scalar(g.steps[pw].in[1], 2.0, 1e-9) ||
+        g.steps[dv].in[0] != d)
       continue;
-    int r2 = single(steps[pw].out[0]);
+    int r2 = single(out(pw));
     if (r2 < 0 || !last_axis_mean(r2)) continue;
-    int add = single(steps[r2].out[0]);
+    int add = single(out(r2));
     if (add < 0 || op(add) != "Add") continue;
-    int eps_slot = other(add, steps[r2].out[0]);
-    if (eps_slot < 0 || !constants[eps_slot].defined() || constants[eps_slot].numel() != 1) continue;
-    int sq = single(steps[add].out[0]);
-    if (sq < 0 || op(sq) != "Sqrt" || single(steps[sq].out[0]) != dv || steps[dv].in[1] != steps[sq].out[0]) continue;
-    int mul = single(steps[dv].out[0]);
+    int eps_slot = other(add, out(r2));
+    if (!is_const(eps_slot) || g.constants[eps_slot].numel() != 1) continue;
+    int sq = single(out(add));
+    if (sq < 0 || op(sq) != "Sqrt" || single(out(sq)) != dv || g.steps[dv].in[1] != out(sq)) continue;
+    int mul = single(out(dv));
     if (mul < 0 || op(mul) != "Mul") continue;
-    int gamma = other(mul, steps[dv].out[0]);
-    if (gamma < 0 || !constants[gamma].defined() || constants[gamma].dim() != 1) continue;
-    int badd = single(steps[mul].out[0]);
-    int beta = badd >= 0 && op(badd) == "Add" ? other(badd, steps[mul].out[0]) : -1;
-    if (beta < 0 || !constants[beta].defined() || constants[beta].dim() != 1 || constants[beta].size(0) != constants[gamma].size(0))
-      continue;
-    Node n;
-    n.name = steps[r1].node->name + "+layernorm";
-    n.op_type = "LayerNormalization";
+    int gamma = other(mul, out(dv));
+    if (!is_const(gamma) || g.constants[gamma].dim() != 1) continue;
+    int badd = single(out(mul));
+    int beta = badd >= 0 && op(badd) == "Add" ? other(badd, out(mul)) : -1;
+    if (!is_const(beta) || g.constants[beta].dim() != 1 || g.constants[beta].size(0) != g.constants[gamma].size(0)) continue;
+    Node n = fused_node(*g.steps[r1].node, "layernorm", "LayerNormalization");
     Attribute axis, eps;
     axis.kind = Attribute::Kind::Int;
     axis.i = -1;
     eps.kind = Attribute::Kind::Float;
-    eps.f = float(constants[eps_slot].to(at::kDouble).reshape({-1})[0].item<double>());
+    eps.f = float(g.constants[eps_slot].to(at::kDouble).reshape({-1})[0].item<double>());
     n.attrs["axis"] = axis;
     n.attrs["epsilon"] = eps;
-    n.inputs = {steps[r1].node->inputs[0], "gamma", "beta"};
-    n.outputs = {steps[badd].node->outputs[0]};
-    fused_nodes.push_back(n);
-    steps[badd] = Step{&fused_nodes.back(), &layer_norm, {x, gamma, beta}, {steps[badd].out[0]}, {}};
-    dead[r1] = dead[sub] = dead[pw] = dead[dv] = dead[r2] = dead[add] = dead[sq] = dead[mul] = 1;
+    replace(badd, n, fn, {x, gamma, beta}, {r1, sub, pw, dv, r2, add, sq, mul});
   }
-  for (size_t i = 0; i < steps.size(); ++i) {
-    if (dead[i] || op(int(i)) != "MatMul") continue;
-    int w = steps[i].in[1];
-    if (w < 0 || !constants[w].defined() || constants[w].dim() != 2 || constants[w].scalar_type() != at::kFloat) continue;
-    int a = single(steps[i].out[0]);
-    if (a < 0 || dead[a] || op(a) != "Add") continue;
-    int b = other(a, steps[i].out[0]);
-    if (b < 0 || !constants[b].defined() || constants[b].dim() != 1 || constants[b].size(0) != constants[w].size(1) ||
-        constants[b].scalar_type() != at::kFloat)
+}
+
+// Attention, MatMul(q, kT) -> [Mul or Div by a scalar] -> [Add bias] -> Softmax -> MatMul(., v),
+// into one kernel that keeps each (window, head) score matrix in cache instead of writing
+// the whole score tensor four times (TinyViT's windows, the SAM decoder's attention).
+void OnnxGraph::Impl::Fusion::attention() {
+  const OpFn& fn = fused_attention();
+  for (int m1 = 0; m1 < int(g.steps.size()); ++m1) {
+    if (dead[m1] || op(m1) != "MatMul") continue;
+    std::vector<int> gone = {m1};
+    int cur = out(m1), scale = -1, bias = -1;
+    bool divide = false;
+    int next = single(cur);
+    if (next >= 0 && (op(next) == "Mul" || (op(next) == "Div" && g.steps[next].in[0] == cur))) {
+      int s = other(next, cur);
+      if (s >= 0 && (!is_const(s) || g.constants[s].numel() == 1)) {
+        scale = s;
+        divide = op(next) == "Div";
+        gone.push_back(next);
+        cur = out(next);
+        next = single(cur);
+      }
+    }
+    if (next >= 0 && op(next) == "Add") {
+      bias = other(next, cur);
+      if (bias < 0) continue;
+      gone.push_back(next);
+      cur = out(next);
+      next = single(cur);
+    }
+    if (next < 0 || op(next) != "Softmax") continue;
+    int softmax = next;
+    gone.push_back(softmax);
+    int m2 = single(out(softmax));
+    if (m2 < 0 || op(m2) != "MatMul" || g.steps[m2].in[0] != out(softmax)) continue;
+    // A runtime scale must be computed before the last MatMul runs; steps are in order.
+    Node n = fused_node(*g.steps[m1].node, "attention", "FusedAttention");
+    Attribute a;
+    a.kind = Attribute::Kind::Int;
+    a.i = divide;
+    n.attrs["divide"] = a;
+    a.i = g.steps[softmax].node->get_int("axis", g.opset() >= 13 ? -1 : 1);
+    n.attrs["softmax_axis"] = a;
+    replace(m2, n, fn, {g.steps[m1].in[0], g.steps[m1].in[1], g.steps[m2].in[1], scale, bias}, gone);
+  }
+}
+
+// MatMul(x, W const 2-D) -> Add(b const 1-D) into one sgemm onto the bias rows.
+void OnnxGraph::Impl::Fusion::linear() {
+  for (int i = 0; i < int(g.steps.size()); ++i) {
+    if (dead[i] || op(i) != "MatMul") continue;
+    int w = g.steps[i].in[1];
+    if (!is_const(w) || g.constants[w].dim() != 2 || g.constants[w].scalar_type() != at::kFloat) continue;
+    int a = single(out(i));
+    if (a < 0 || op(a) != "Add") continue;
+    int b = other(a, out(i));
+    if (!is_const(b) || g.constants[b].dim() != 1 || g.constants[b].size(0) != g.constants[w].size(1) ||
+        g.constants[b].scalar_type() != at::kFloat)
       continue;
-    Node n;
-    n.name = steps[i].node->name + "+bias";
-    n.op_type = "FusedLinear";
-    n.inputs = {steps[i].node->inputs[0], steps[i].node->inputs[1], steps[a].node->inputs[steps[a].in[0] == b ? 0 : 1]};
-    n.outputs = {steps[a].node->outputs[0]};
-    fused_nodes.push_back(n);
-    steps[a] = Step{&fused_nodes.back(), &fused_linear(), {steps[i].in[0], w, b}, {steps[a].out[0]}, {}};
-    dead[i] = 1;
+    replace(a, fused_node(*g.steps[i].node, "bias", "FusedLinear"), fused_linear(), {g.steps[i].in[0], w, b}, {i});
   }
-  std::vector<Step> kept;
-  for (size_t i = 0; i < steps.size(); ++i)
-    if (!dead[i]) kept.push_back(std::move(steps[i]));
-  steps = std::move(kept);
 }
 
 OnnxGraph::~OnnxGraph() = default;
@@ -1284,9 +1426,15 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
   }
   for (const auto& [name, t] : feeds)
     if (!m.slot_of.count(name)) throw Error(m.model.path, "the graph has no input named '" + name + "'");
-  // ISEGMAN_ONNX_PROFILE=1 prints the time spent per operator type after each run.
-  static const bool profile = std::getenv("ISEGMAN_ONNX_PROFILE") != nullptr;
-  std::map<std::string, std::pair<double, int>> by_op;
+  // ISEGMAN_ONNX_PROFILE=1 prints the time spent per operator type after each run: wall
+  // time and the process's CPU time (all threads; steadier than wall time on a shared machine).
+  // ISEGMAN_ONNX_PROFILE=2 also prints every node with its input shapes and times.
+  static const int profile = std::getenv("ISEGMAN_ONNX_PROFILE") ? std::atoi(std::getenv("ISEGMAN_ONNX_PROFILE")) : 0;
+  struct OpTime {
+    double wall = 0, cpu = 0;
+    int count = 0;
+  };
+  std::map<std::string, OpTime> by_op;
   for (const auto& st : m.steps) {
     Ctx ctx{*st.node, m.model.opset, {}, {}};
     ctx.in.reserve(st.in.size());
@@ -1295,12 +1443,20 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
         m.fail(*st.node, "input '" + st.node->inputs[ctx.in.size()] + "' has no value", ctx.in);
       ctx.in.push_back(s < 0 ? at::Tensor() : env[s]);
     }
-    double t0 = profile ? now_ms() : 0;
+    double t0 = profile ? now_ms() : 0, c0 = profile ? cpu_ms() : 0;
     m.execute(*st.node, *st.fn, ctx);
     if (profile) {
-      auto& [ms, count] = by_op[st.node->op_type];
-      ms += now_ms() - t0;
-      ++count;
+      double dt = now_ms() - t0, dc = cpu_ms() - c0;
+      OpTime& t = by_op[st.node->op_type];
+      t.wall += dt;
+      t.cpu += dc;
+      ++t.count;
+      if (profile >= 2) {
+        std::ostringstream o;
+        for (const auto& in : ctx.in) o << " " << (in.defined() ? shape_str(in.sizes()) + (in.is_contiguous() ? "" : "s") : "-");
+        std::fprintf(stderr, "    %8.2f ms %8.2f cpu %-20s %s:%s\n", dt, dc, st.node->op_type.c_str(), st.node->name.c_str(),
+                     o.str().c_str());
+      }
     }
     for (size_t i = 0; i < st.out.size(); ++i)
       if (st.out[i] >= 0) env[st.out[i]] = std::move(ctx.out[i]);
@@ -1308,12 +1464,14 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
   }
   if (profile) {
     std::vector<std::pair<double, std::string>> rows;
-    double total = 0;
-    for (const auto& [op, v] : by_op) rows.emplace_back(v.first, op), total += v.first;
+    double total = 0, total_cpu = 0;
+    for (const auto& [op, v] : by_op) rows.emplace_back(v.cpu, op), total += v.wall, total_cpu += v.cpu;
     std::sort(rows.rbegin(), rows.rend());
-    std::fprintf(stderr, "%s: %.1f ms in %zu nodes\n", m.model.path.c_str(), total, m.steps.size());
-    for (const auto& [ms, op] : rows)
-      std::fprintf(stderr, "  %-20s %8.2f ms %5d nodes\n", op.c_str(), ms, by_op[op].second);
+    std::fprintf(stderr, "%s: %.1f ms (%.1f ms CPU) in %zu nodes; tensor pool: %zu mappings so far, %.0f MiB cached\n",
+                 m.model.path.c_str(), total, total_cpu, m.steps.size(), tensor_memory_pool_mappings(),
+                 double(tensor_memory_pool_cached_bytes()) / (1 << 20));
+    for (const auto& [cpu, op] : rows)
+      std::fprintf(stderr, "  %-20s %8.2f ms %8.2f ms CPU %5d nodes\n", op.c_str(), by_op[op].wall, cpu, by_op[op].count);
   }
   std::map<std::string, HostTensor> result;
   for (const auto& [name, s] : m.output_slots) {

@@ -6,11 +6,14 @@
 #include <onnx/onnx_pb.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 
 #include "core/error.h"
+#include "models/tensor_memory.h"
 
 using namespace isegman;
 using namespace isegman::models;
@@ -291,4 +294,190 @@ TEST(OnnxGraph, ExpandOneHotWhereRange) {
   EXPECT_EQ(floats_of(out["hot"]), (std::vector<float>{7, 0, 0, 0, 0, 7, 0, 7, 0}));  // -1 wraps to depth-1
   EXPECT_EQ(floats_of(out["picked"]), (std::vector<float>{7, 1, 1, 2, 2, 7, 3, 7, 3}));
   EXPECT_EQ(ints_of(out["range"]), (std::vector<int64_t>{2, 5, 8}));
+}
+
+// ---------------------------------------------------------------- kernels and fusions
+
+namespace {
+
+// Pseudo-random values in [-2, 2) from a fixed linear congruential sequence.
+std::vector<float> noise(int64_t n, uint32_t seed) {
+  std::vector<float> v(static_cast<size_t>(n));
+  uint32_t s = seed * 2654435761u + 1u;
+  for (auto& x : v) {
+    s = s * 1664525u + 1013904223u;
+    x = float(s >> 8) / float(1 << 24) * 4.0f - 2.0f;
+  }
+  return v;
+}
+
+int64_t count_of(const std::vector<int64_t>& dims) {
+  int64_t n = 1;
+  for (int64_t d : dims) n *= d;
+  return n;
+}
+
+HostTensor random_tensor(const std::vector<int64_t>& dims, uint32_t seed) {
+  return HostTensor::from_floats(dims, noise(count_of(dims), seed));
+}
+
+// One model loaded twice, with the fusion pass and with ISEGMAN_ONNX_NO_FUSION=1.
+struct FusedAndPlain {
+  std::string path;
+  std::unique_ptr<OnnxGraph> fused, plain;
+  explicit FusedAndPlain(Builder& b) : path(b.save()) {
+    const char* was = std::getenv("ISEGMAN_ONNX_NO_FUSION");
+    std::string saved = was ? was : "";
+    unsetenv("ISEGMAN_ONNX_NO_FUSION");
+    fused = std::make_unique<OnnxGraph>(path);
+    setenv("ISEGMAN_ONNX_NO_FUSION", "1", 1);
+    plain = std::make_unique<OnnxGraph>(path);
+    if (was) setenv("ISEGMAN_ONNX_NO_FUSION", saved.c_str(), 1);
+    else unsetenv("ISEGMAN_ONNX_NO_FUSION");
+  }
+  ~FusedAndPlain() { std::remove(path.c_str()); }
+  bool has_op(const std::string& op) const {
+    auto ops = fused->op_types();
+    return std::find(ops.begin(), ops.end(), op) != ops.end();
+  }
+};
+
+void expect_close(const HostTensor& a, const HostTensor& b, double tol) {
+  ASSERT_EQ(a.shape, b.shape);
+  std::vector<float> x = floats_of(a), y = floats_of(b);
+  double worst = 0;
+  for (size_t i = 0; i < x.size(); ++i) worst = std::max(worst, std::fabs(double(x[i]) - double(y[i])));
+  EXPECT_LT(worst, tol);
+}
+
+}  // namespace
+
+// MatMul on strided (transposed) operands with broadcast batch axes, against plain loops.
+TEST(OnnxGraph, MatMulBroadcastsBatchesAndReadsTransposedOperands) {
+  Builder b;
+  b.input("a", {2, 1, 4, 3});  // transposed to [2,1,3,4]
+  b.input("b", {5, 2, 4});     // transposed to [5,4,2]
+  b.output("c");
+  attr_ints(b.node("Transpose", {"a"}, {"at"}), "perm", {0, 1, 3, 2});
+  attr_ints(b.node("Transpose", {"b"}, {"bt"}), "perm", {0, 2, 1});
+  b.node("MatMul", {"at", "bt"}, {"c"});
+  Graph g(b);
+  std::vector<float> a = noise(2 * 4 * 3, 1), bv = noise(5 * 2 * 4, 2);
+  auto out = g.g->run({{"a", HostTensor::from_floats({2, 1, 4, 3}, a)}, {"b", HostTensor::from_floats({5, 2, 4}, bv)}});
+  ASSERT_EQ(out["c"].shape, (std::vector<int64_t>{2, 5, 3, 2}));
+  std::vector<float> c = floats_of(out["c"]);
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 5; ++j)
+      for (int r = 0; r < 3; ++r)
+        for (int col = 0; col < 2; ++col) {
+          double want = 0;
+          for (int k = 0; k < 4; ++k) want += double(a[size_t((i * 4 + k) * 3 + r)]) * double(bv[size_t((j * 2 + col) * 4 + k)]);
+          EXPECT_NEAR(c[size_t(((i * 5 + j) * 3 + r) * 2 + col)], want, 1e-4);
+        }
+}
+
+// TinyViT's window attention (opset 12): MatMul(q, kT) -> Mul(scale) -> Add(bias) ->
+// Softmax(axis 3) -> MatMul(v) becomes one FusedAttention step with the same result.
+TEST(OnnxGraph, FusesWindowAttentionWithScaleAndBias) {
+  Builder b(12);
+  b.input("q", {6, 4, 7, 8});
+  b.input("k", {6, 4, 7, 8});
+  b.input("v", {6, 4, 7, 8});
+  b.floats("scale", {}, {0.35f});
+  b.floats("bias", {4, 7, 7}, noise(4 * 7 * 7, 3));
+  b.output("y");
+  attr_ints(b.node("Transpose", {"k"}, {"kt"}), "perm", {0, 1, 3, 2});
+  b.node("MatMul", {"q", "kt"}, {"s"});
+  b.node("Mul", {"s", "scale"}, {"ss"});
+  b.node("Add", {"ss", "bias"}, {"sb"});
+  attr_int(b.node("Softmax", {"sb"}, {"p"}), "axis", 3);
+  b.node("MatMul", {"p", "v"}, {"y"});
+  FusedAndPlain g(b);
+  EXPECT_TRUE(g.has_op("FusedAttention"));
+  EXPECT_EQ(g.fused->node_count() + 4, g.plain->node_count());
+  std::map<std::string, HostTensor> feeds = {
+      {"q", random_tensor({6, 4, 7, 8}, 4)}, {"k", random_tensor({6, 4, 7, 8}, 5)}, {"v", random_tensor({6, 4, 7, 8}, 6)}};
+  expect_close(g.fused->run(feeds)["y"], g.plain->run(feeds)["y"], 1e-5);
+}
+
+// The SAM decoder's form: the divisor is computed at run time (sqrt of a shape), no bias,
+// and score rows longer than one cache block (the kernel splits the rows of an item).
+TEST(OnnxGraph, FusesAttentionWithRuntimeDivisorAndLongRows) {
+  Builder b(17);
+  b.input("q", {1, 2, 40, 16});
+  b.input("k", {1, 2, 600, 16});
+  b.input("v", {1, 2, 600, 8});
+  b.ints("last", {}, {3});
+  b.output("y");
+  b.node("Shape", {"q"}, {"qs"});
+  attr_int(b.node("Gather", {"qs", "last"}, {"width"}), "axis", 0);
+  attr_int(b.node("Cast", {"width"}, {"widthf"}), "to", onnx::TensorProto_DataType_FLOAT);
+  b.node("Sqrt", {"widthf"}, {"root"});
+  attr_ints(b.node("Transpose", {"k"}, {"kt"}), "perm", {0, 1, 3, 2});
+  b.node("MatMul", {"q", "kt"}, {"s"});
+  b.node("Div", {"s", "root"}, {"sd"});
+  attr_int(b.node("Softmax", {"sd"}, {"p"}), "axis", -1);
+  b.node("MatMul", {"p", "v"}, {"y"});
+  FusedAndPlain g(b);
+  EXPECT_TRUE(g.has_op("FusedAttention"));
+  std::map<std::string, HostTensor> feeds = {
+      {"q", random_tensor({1, 2, 40, 16}, 7)}, {"k", random_tensor({1, 2, 600, 16}, 8)}, {"v", random_tensor({1, 2, 600, 8}, 9)}};
+  expect_close(g.fused->run(feeds)["y"], g.plain->run(feeds)["y"], 1e-5);
+}
+
+// Softmax before opset 13 flattens the axes from `axis` on: over axis 1 of a rank-4 score
+// tensor that is not the attention softmax, and the fused step must give what the plain
+// operators give.
+TEST(OnnxGraph, FusedAttentionKeepsSoftmaxOverOtherAxes) {
+  Builder b(12);
+  b.input("q", {2, 3, 5, 4});
+  b.input("kt", {2, 3, 4, 5});
+  b.input("v", {2, 3, 5, 4});
+  b.output("y");
+  b.node("MatMul", {"q", "kt"}, {"s"});
+  attr_int(b.node("Softmax", {"s"}, {"p"}), "axis", 1);
+  b.node("MatMul", {"p", "v"}, {"y"});
+  FusedAndPlain g(b);
+  EXPECT_TRUE(g.has_op("FusedAttention"));
+  std::map<std::string, HostTensor> feeds = {
+      {"q", random_tensor({2, 3, 5, 4}, 10)}, {"kt", random_tensor({2, 3, 4, 5}, 11)}, {"v", random_tensor({2, 3, 5, 4}, 12)}};
+  expect_close(g.fused->run(feeds)["y"], g.plain->run(feeds)["y"], 1e-5);
+}
+
+// Large intermediates come from the tensor pool, and a second run reuses its blocks
+// instead of mapping (and page-faulting) fresh memory.
+TEST(TensorMemory, SecondRunReusesLargeBlocks) {
+  if (std::getenv("ISEGMAN_ONNX_NO_POOL")) GTEST_SKIP() << "ISEGMAN_ONNX_NO_POOL is set";
+  Builder b;
+  b.input("x", {512, 1024});  // 2 MiB per tensor
+  b.output("y");
+  b.node("Mul", {"x", "x"}, {"sq"});
+  b.node("Add", {"sq", "x"}, {"s"});
+  b.node("Relu", {"s"}, {"y"});
+  Graph g(b);
+  HostTensor x = random_tensor({512, 1024}, 13);
+  g.g->run({{"x", x}});
+  size_t maps = tensor_memory_pool_mappings();
+  EXPECT_GT(maps, 0u);
+  EXPECT_GT(tensor_memory_pool_cached_bytes(), 0u);
+  auto out = g.g->run({{"x", x}});
+  EXPECT_EQ(tensor_memory_pool_mappings(), maps);
+  std::vector<float> xv = floats_of(x), y = floats_of(out["y"]);
+  for (size_t i = 0; i < y.size(); i += 4099) EXPECT_NEAR(y[i], std::max(0.0f, xv[i] * xv[i] + xv[i]), 1e-5);
+}
+
+// An empty inner axis: the product is all zeros (and Gemm adds its C).
+TEST(OnnxGraph, MatMulAndGemmWithEmptyInnerAxis) {
+  Builder b;
+  b.input("a", {2, 0});
+  b.input("b", {0, 3});
+  b.floats("c", {3}, {1, 2, 3});
+  b.output("y");
+  b.output("z");
+  b.node("MatMul", {"a", "b"}, {"y"});
+  b.node("Gemm", {"a", "b", "c"}, {"z"});
+  Graph g(b);
+  auto out = g.g->run({{"a", HostTensor::from_floats({2, 0}, {})}, {"b", HostTensor::from_floats({0, 3}, {})}});
+  EXPECT_EQ(floats_of(out["y"]), (std::vector<float>(6, 0.0f)));
+  EXPECT_EQ(floats_of(out["z"]), (std::vector<float>{1, 2, 3, 1, 2, 3}));
 }

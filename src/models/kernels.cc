@@ -1,0 +1,262 @@
+// Kernels of the ONNX executor (see kernels.h), on top of gemm.h's sgemm.
+#include "models/kernels.h"
+
+#include <ATen/ATen.h>
+#include <ATen/Parallel.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+#include "models/gemm.h"
+
+namespace isegman::models {
+namespace {
+
+// How sgemm reads one matrix of a [..., rows, cols] tensor: row-major with row stride
+// `ld`, or (transposed) column-major with column stride `ld`.
+struct MatrixLayout {
+  bool transposed = false;
+  int64_t ld = 0;
+};
+
+bool layout_of(const at::Tensor& t, MatrixLayout& l) {
+  int64_t rows = t.size(-2), cols = t.size(-1), rs = t.stride(-2), cs = t.stride(-1);
+  if ((cs == 1 || cols == 1) && rs >= std::max<int64_t>(cols, 1)) {
+    l = {false, rs};
+    return true;
+  }
+  if ((rs == 1 || rows == 1) && cs >= std::max<int64_t>(rows, 1)) {
+    l = {true, cs};
+    return true;
+  }
+  return false;
+}
+
+std::vector<int64_t> broadcast(std::vector<int64_t> a, std::vector<int64_t> b) {
+  if (a.size() < b.size()) std::swap(a, b);
+  b.insert(b.begin(), a.size() - b.size(), 1);
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (a[i] == b[i] || b[i] == 1) continue;
+    if (a[i] == 1) { a[i] = b[i]; continue; }
+    throw std::invalid_argument("batch shapes cannot be broadcast");
+  }
+  return a;
+}
+
+// Element offset of batch item i (row-major over `batch`) in a tensor expanded to it.
+int64_t batch_offset(const std::vector<int64_t>& batch, const at::Tensor& t, int64_t i) {
+  int64_t off = 0;
+  for (int64_t d = int64_t(batch.size()) - 1; d >= 0; --d) {
+    off += (i % batch[d]) * t.stride(d);
+    i /= batch[d];
+  }
+  return off;
+}
+
+std::vector<int64_t> with_matrix(std::vector<int64_t> batch, int64_t rows, int64_t cols) {
+  batch.push_back(rows);
+  batch.push_back(cols);
+  return batch;
+}
+
+std::vector<int64_t> batch_of(const at::Tensor& t) {
+  if (t.dim() < 2) return {};
+  return {t.sizes().begin(), t.sizes().end() - 2};
+}
+
+// exp(x) for the softmax: x = n ln2 + r with |r| <= ln2/2 (n rounded with the 1.5 * 2^23
+// trick, ln2 split in two for an exact n ln2), e^r by its Taylor series to r^7 (truncation
+// error < 1e-8 relative), 2^n built in the exponent bits. Written so the compiler vectorises
+// the loops that call it; inputs are clamped to [-87, 88] (results stay normal floats).
+inline float exp_for_softmax(float x) {
+  x = x < -87.0f ? -87.0f : (x > 88.0f ? 88.0f : x);
+  float t = x * 1.44269504088896341f;
+  float n = (t + 12582912.0f) - 12582912.0f;
+  float r = x - n * 0.693359375f + n * 2.12194440e-4f;
+  float p = 1.0f / 5040.0f;
+  p = p * r + 1.0f / 720.0f;
+  p = p * r + 1.0f / 120.0f;
+  p = p * r + 1.0f / 24.0f;
+  p = p * r + 1.0f / 6.0f;
+  p = p * r + 0.5f;
+  p = p * r + 1.0f;
+  p = p * r + 1.0f;
+  int32_t bits = (int32_t(n) + 127) << 23;
+  float two_n;
+  std::memcpy(&two_n, &bits, sizeof two_n);
+  return p * two_n;
+}
+
+}  // namespace
+
+void softmax_rows(float* x, int64_t rows, int64_t n, int64_t ld) {
+  constexpr int64_t L = 16;  // independent lanes, so max and sum vectorise without reordering doubts
+  for (int64_t r = 0; r < rows; ++r) {
+    float* row = x + r * ld;
+    float lane[L];
+    for (int64_t l = 0; l < L; ++l) lane[l] = -INFINITY;
+    int64_t j = 0;
+    for (; j + L <= n; j += L)
+      for (int64_t l = 0; l < L; ++l) lane[l] = std::max(lane[l], row[j + l]);
+    float m = -INFINITY;
+    for (int64_t l = 0; l < L; ++l) m = std::max(m, lane[l]);
+    for (; j < n; ++j) m = std::max(m, row[j]);
+    for (int64_t l = 0; l < L; ++l) lane[l] = 0.0f;
+    j = 0;
+    for (; j + L <= n; j += L)
+      for (int64_t l = 0; l < L; ++l) {
+        float e = exp_for_softmax(row[j + l] - m);
+        row[j + l] = e;
+        lane[l] += e;
+      }
+    float sum = 0.0f;
+    for (int64_t l = 0; l < L; ++l) sum += lane[l];
+    for (; j < n; ++j) {
+      float e = exp_for_softmax(row[j] - m);
+      row[j] = e;
+      sum += e;
+    }
+    float inv = 1.0f / sum;
+    for (j = 0; j < n; ++j) row[j] *= inv;
+  }
+}
+
+at::Tensor batched_matmul(const at::Tensor& a0, const at::Tensor& b0) {
+  if (a0.dim() < 2 || b0.dim() < 2 || a0.scalar_type() != at::kFloat || b0.scalar_type() != at::kFloat)
+    return at::matmul(a0, b0);
+  int64_t m = a0.size(-2), k = a0.size(-1), n = b0.size(-1);
+  if (b0.size(-2) != k) throw std::invalid_argument("matmul: inner dimensions differ");
+  std::vector<int64_t> batch = broadcast(batch_of(a0), batch_of(b0));
+  std::vector<int64_t> shape_c = with_matrix(batch, m, n);
+  at::Tensor a = a0.expand(with_matrix(batch, m, k)), b = b0.expand(with_matrix(batch, k, n));  // batch strides 0 where broadcast
+  MatrixLayout la, lb;
+  if (!layout_of(a, la)) a = a.contiguous(), layout_of(a, la);
+  if (!layout_of(b, lb)) b = b.contiguous(), layout_of(b, lb);
+  at::Tensor c = at::empty(shape_c, a0.options());
+  if (c.numel() == 0) return c;
+  if (k == 0) return c.zero_();
+  int64_t count = 1;
+  for (int64_t d : batch) count *= d;
+  const float* pa = a.data_ptr<float>();
+  const float* pb = b.data_ptr<float>();
+  float* pc = c.data_ptr<float>();
+  auto run = [&](int64_t i) {
+    sgemm(la.transposed, lb.transposed, m, n, k, 1.0f, pa + batch_offset(batch, a, i), la.ld, pb + batch_offset(batch, b, i),
+          lb.ld, 0.0f, pc + i * m * n, n);
+  };
+  if (count == 1) {
+    run(0);  // one product: sgemm uses all threads itself
+  } else {
+    // Many small products: one per thread at a time (sgemm runs single-threaded inside).
+    at::parallel_for(0, count, 1, [&](int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end; ++i) run(i);
+    });
+  }
+  return c;
+}
+
+at::Tensor linear(const at::Tensor& x, const at::Tensor& w0, const at::Tensor& bias) {
+  int64_t k = w0.size(0), n = w0.size(1);
+  if (x.size(-1) != k) throw std::invalid_argument("linear: inner dimensions differ");
+  at::Tensor x2 = x.reshape({-1, k});
+  if (x2.stride(1) != 1 || x2.stride(0) < k) x2 = x2.contiguous();
+  at::Tensor w = w0.contiguous();
+  int64_t m = x2.size(0);
+  std::vector<int64_t> shape = x.sizes().vec();
+  shape.back() = n;
+  at::Tensor y = at::empty({m, n}, x.options());
+  float beta = 0.0f;
+  if (bias.defined()) {
+    y.copy_(bias.reshape({1, n}).expand({m, n}));  // sgemm adds the product onto the bias rows
+    beta = 1.0f;
+  }
+  if (m > 0) sgemm(false, false, m, n, k, 1.0f, x2.data_ptr<float>(), x2.stride(0), w.data_ptr<float>(), n, beta,
+                   y.data_ptr<float>(), n);
+  return y.reshape(shape);
+}
+
+at::Tensor conv1x1(const at::Tensor& x0, const at::Tensor& w0, const at::Tensor& bias) {
+  at::Tensor x = x0.contiguous(), w = w0.contiguous();
+  int64_t batch = x.size(0), ci = x.size(1), hw = x.size(2) * x.size(3), co = w.size(0);
+  at::Tensor y = at::empty({batch, co, x.size(2), x.size(3)}, x.options());
+  float beta = 0.0f;
+  if (bias.defined()) {
+    y.copy_(bias.reshape({1, co, 1, 1}).expand(y.sizes()));
+    beta = 1.0f;
+  }
+  for (int64_t i = 0; i < batch; ++i)
+    sgemm(false, false, co, hw, ci, 1.0f, w.data_ptr<float>(), ci, x.data_ptr<float>() + i * ci * hw, hw, beta,
+          y.data_ptr<float>() + i * co * hw, hw);
+  return y;
+}
+
+}  // namespace isegman::models
+
+namespace isegman::models {
+
+at::Tensor attention(const at::Tensor& q0, const at::Tensor& kt0, const at::Tensor& v0, double scale, const at::Tensor& bias0) {
+  int64_t m = q0.size(-2), k = q0.size(-1), n = kt0.size(-1), d = v0.size(-1);
+  if (kt0.size(-2) != k || v0.size(-2) != n) throw std::invalid_argument("attention: inner dimensions differ");
+  std::vector<int64_t> batch = broadcast(broadcast(batch_of(q0), batch_of(kt0)), batch_of(v0));
+  at::Tensor bias;
+  if (bias0.defined()) {
+    // The bias broadcasts against [batch..., m, n]; its matrix part must have unit column stride.
+    std::vector<int64_t> full = broadcast(with_matrix(batch, m, n), bias0.sizes().vec());
+    batch.assign(full.begin(), full.end() - 2);
+    if (full[full.size() - 2] != m || full.back() != n) throw std::invalid_argument("attention: bias does not broadcast");
+    bias = bias0.expand(full);
+    if (bias.stride(-1) != 1 && n > 1) bias = bias0.contiguous().expand(full);
+  }
+  at::Tensor q = q0.expand(with_matrix(batch, m, k)), kt = kt0.expand(with_matrix(batch, k, n)),
+             v = v0.expand(with_matrix(batch, n, d));
+  MatrixLayout lq, lk, lv;
+  if (!layout_of(q, lq)) q = q.contiguous(), layout_of(q, lq);
+  if (!layout_of(kt, lk)) kt = kt.contiguous(), layout_of(kt, lk);
+  if (!layout_of(v, lv)) v = v.contiguous(), layout_of(v, lv);
+  at::Tensor out = at::empty(with_matrix(batch, m, d), q0.options());
+  int64_t count = 1;
+  for (int64_t b : batch) count *= b;
+  if (out.numel() == 0) return out;
+  if (n == 0) return out.fill_(NAN);  // softmax over nothing
+  // Work unit: `rows` score rows of one batch item (about 64 KiB of scores, cache-resident).
+  int64_t rows = std::clamp<int64_t>(16384 / n, 1, m);
+  int64_t tiles = (m + rows - 1) / rows;
+  const float* pq = q.data_ptr<float>();
+  const float* pk = kt.data_ptr<float>();
+  const float* pv = v.data_ptr<float>();
+  const float* pb = bias.defined() ? bias.data_ptr<float>() : nullptr;
+  float* po = out.data_ptr<float>();
+  // Row r of q's matrix starts at r * row step (row-major: ld; transposed: 1).
+  int64_t q_row = lq.transposed ? 1 : lq.ld;
+  at::parallel_for(0, count * tiles, 1, [&](int64_t begin, int64_t end) {
+    std::vector<float> scores(size_t(rows * n));
+    for (int64_t unit = begin; unit < end; ++unit) {
+      int64_t item = unit / tiles, r0 = (unit % tiles) * rows, nr = std::min(rows, m - r0);
+      float* s = scores.data();
+      sgemm(lq.transposed, lk.transposed, nr, n, k, float(scale), pq + batch_offset(batch, q, item) + r0 * q_row, lq.ld,
+            pk + batch_offset(batch, kt, item), lk.ld, 0.0f, s, n);
+      if (pb) {
+        const float* b = pb + batch_offset(batch, bias, item);
+        int64_t brs = bias.stride(-2), bcs = bias.stride(-1);
+        for (int64_t r = 0; r < nr; ++r) {
+          const float* brow = b + (r0 + r) * brs;
+          float* srow = s + r * n;
+          if (bcs == 1) {
+            for (int64_t j = 0; j < n; ++j) srow[j] += brow[j];
+          } else {
+            for (int64_t j = 0; j < n; ++j) srow[j] += brow[j * bcs];
+          }
+        }
+      }
+      softmax_rows(s, nr, n, n);
+      sgemm(false, lv.transposed, nr, d, n, 1.0f, s, n, pv + batch_offset(batch, v, item), lv.ld, 0.0f,
+            po + (item * m + r0) * d, d);
+    }
+  });
+  return out;
+}
+
+}  // namespace isegman::models

@@ -1,0 +1,29 @@
+// Tensor-level kernels of the ONNX executor that ATen lacks or runs slowly on CPU.
+// Internal to the models layer: include only from its .cc files (it pulls in ATen).
+#pragma once
+
+#include <ATen/core/Tensor.h>
+
+namespace isegman::models {
+
+// a @ b with NumPy broadcasting of the batch axes (both operands rank >= 2, float), each
+// matrix read where it lies: a transposed or row-strided view (Transpose, Split outputs)
+// is passed to sgemm with its strides instead of being copied. Returns a contiguous tensor.
+at::Tensor batched_matmul(const at::Tensor& a, const at::Tensor& b);
+
+// x[..., K] @ w[K, N] (+ bias[N]) as one sgemm over the flattened rows.
+at::Tensor linear(const at::Tensor& x, const at::Tensor& w, const at::Tensor& bias);
+
+// 1x1 convolution, stride 1, no padding: per image W[Co, Ci] @ x[Ci, H*W] (+ bias[Co]).
+at::Tensor conv1x1(const at::Tensor& x, const at::Tensor& w, const at::Tensor& bias);
+
+// softmax(scale · q @ kt + bias) @ v, softmax over the last axis: q [..., M, K],
+// kt [..., K, N], v [..., N, D], bias (optional) broadcastable to [..., M, N]; batch axes
+// broadcast. Works through blocks of score rows that stay in cache: two sgemms, the bias
+// and a row softmax per block, never the whole score tensor. Returns [..., M, D].
+at::Tensor attention(const at::Tensor& q, const at::Tensor& kt, const at::Tensor& v, double scale, const at::Tensor& bias);
+
+// In place, each of `rows` rows of n floats (row stride ld): exp(x - max) / sum.
+void softmax_rows(float* x, int64_t rows, int64_t n, int64_t ld);
+
+}  // namespace isegman::models
