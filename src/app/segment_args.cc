@@ -20,6 +20,7 @@ const char* const kSegmentOptionsHelp =
     "  --paper                       the paper's pipeline alone: none of the additions below\n"
     "  --no-depth-layers             let a mask vote for everything it shows, gaps included\n"
     "  --global-depth-layers         depth layers over the whole mask instead of per region\n"
+    "  --no-depth-extents            depth layers from Gaussian centres only (not their depth extents)\n"
     "  --no-see-through              segment what a click sees through gaps as the render shows it\n"
     "  --no-coherence                select by vote share > tau alone (no nearest-neighbour decision)\n"
     "  --no-centre-rule              no selection of shares in (0.5, tau] by their centres lying in the masks\n"
@@ -41,7 +42,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents",
                                           "no-candidate-choice", "hidden-fallback",
                                           "sam-negatives"};
   return f;
@@ -68,6 +69,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   if (args.has("global-depth-layers")) s.session.layer_options.region = 0;
   s.session.coherence = !paper && !args.has("no-coherence");
   s.session.centre_rule.enabled = !paper && !args.has("no-centre-rule");
+  if (args.has("no-depth-extents")) s.session.layer_options.extent_sigmas = 0;
   s.session.see_through = !paper && !args.has("no-see-through");
   s.session.agreement_inspection = !paper && !args.has("overlap-inspection");
   s.session.choose_candidate = !paper && !args.has("no-candidate-choice");

@@ -41,7 +41,7 @@ ViewVotes masked_votes(const PreparedFrame& frame, const Image& mask, int thread
 struct CentreRule {
   bool enabled = false;
   double tau_low = 0.5;     // shares in (tau_low, tau] may be decided by centre evidence
-  double min_centred = 0.5; // ... when C/A exceeds this (the centre inside most masks)
+  double min_centred = 0.7; // ... when C/A exceeds this (the centre inside the masks of nearly every view)
 };
 
 class VoteAccumulator {
