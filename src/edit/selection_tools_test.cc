@@ -65,29 +65,6 @@ TEST(SelectionTools, SetAlgebra) {
   EXPECT_THROW(unite(a, Selection::all_of(other)), Error);
 }
 
-TEST(SelectionTools, NearestNeighboursMatchBruteForce) {
-  const GaussianScene s = testing::random_scene(3000, 0, 8, false, false);
-  const CentreIndex index(s);
-  testing::TestRng rng(5);
-  for (int q = 0; q < 100; ++q) {
-    const Vec3 p{rng.range(-1.2, 1.2), rng.range(-1.2, 1.2), rng.range(-1.2, 1.2)};
-    std::vector<std::pair<double, uint32_t>> all;
-    for (uint32_t i = 0; i < s.size(); ++i) {
-      double dx = s.positions[3 * i] - p.x, dy = s.positions[3 * i + 1] - p.y, dz = s.positions[3 * i + 2] - p.z;
-      all.push_back({dx * dx + dy * dy + dz * dz, i});
-    }
-    std::sort(all.begin(), all.end());
-    const std::vector<uint32_t> got = index.nearest(p, 7, 0);
-    ASSERT_EQ(got.size(), 7u);
-    for (int k = 0; k < 7; ++k) EXPECT_EQ(got[k], all[k].second);
-    // With a distance limit only the close ones come back.
-    const std::vector<uint32_t> near = index.nearest(p, 50, 0.15);
-    size_t within = 0;
-    while (within < all.size() && all[within].first <= 0.15 * 0.15) ++within;
-    EXPECT_EQ(near.size(), std::min<size_t>(within, 50));
-  }
-}
-
 TEST(SelectionTools, GrowAddsNeighbours) {
   const GaussianScene s = line();
   const Selection seed = Selection::from_mask(s, flags({5}));
@@ -100,22 +77,6 @@ TEST(SelectionTools, GrowAddsNeighbours) {
   EXPECT_EQ(grow(s, seed, 0, 2.0).mask, flags({3, 4, 5, 6, 7}));
   EXPECT_EQ(grow(s, seed, 0, 1.0, 2).mask, flags({3, 4, 5, 6, 7}));
   EXPECT_THROW(grow(s, seed, 0, -1), Error);
-}
-
-TEST(SelectionTools, RadiusQueryMatchesBruteForce) {
-  const GaussianScene s = testing::random_scene(2000, 0, 9, false, false);
-  const CentreIndex index(s);
-  testing::TestRng rng(6);
-  for (int q = 0; q < 50; ++q) {
-    const Vec3 p{rng.range(-1.2, 1.2), rng.range(-1.2, 1.2), rng.range(-1.2, 1.2)};
-    const double r = rng.range(0.01, 0.4);
-    std::vector<uint32_t> want;
-    for (uint32_t i = 0; i < s.size(); ++i) {
-      const Vec3 d = s.position(i) - p;
-      if (dot(d, d) <= r * r) want.push_back(i);
-    }
-    EXPECT_EQ(index.within(p, r), want);
-  }
 }
 
 TEST(SelectionTools, ShrinkErodesTheBorder) {

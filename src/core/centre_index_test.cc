@@ -1,0 +1,67 @@
+#include "core/centre_index.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "core/random.h"
+
+namespace isegman {
+namespace {
+
+GaussianScene random_centres(size_t n, uint64_t seed) {
+  SplitMix64 rng(seed);
+  GaussianScene s;
+  s.resize(n, 0);
+  for (float& p : s.positions) p = float(rng.range(-1, 1));
+  return s;
+}
+
+TEST(CentreIndex, NearestMatchBruteForce) {
+  const GaussianScene s = random_centres(3000, 8);
+  const CentreIndex index(s);
+  SplitMix64 rng(5);
+  for (int q = 0; q < 100; ++q) {
+    const Vec3 p{rng.range(-1.2, 1.2), rng.range(-1.2, 1.2), rng.range(-1.2, 1.2)};
+    std::vector<std::pair<double, uint32_t>> all;
+    for (uint32_t i = 0; i < s.size(); ++i) {
+      const Vec3 d = s.position(i) - p;
+      all.push_back({dot(d, d), i});
+    }
+    std::sort(all.begin(), all.end());
+    const std::vector<uint32_t> got = index.nearest(p, 7, 0);
+    ASSERT_EQ(got.size(), 7u);
+    for (int k = 0; k < 7; ++k) EXPECT_EQ(got[k], all[k].second);
+    // With a distance limit only the close ones come back.
+    const std::vector<uint32_t> near = index.nearest(p, 50, 0.15);
+    size_t within = 0;
+    while (within < all.size() && all[within].first <= 0.15 * 0.15) ++within;
+    EXPECT_EQ(near.size(), std::min<size_t>(within, 50));
+  }
+}
+
+TEST(CentreIndex, RadiusQueryMatchesBruteForce) {
+  const GaussianScene s = random_centres(2000, 9);
+  const CentreIndex index(s);
+  SplitMix64 rng(6);
+  for (int q = 0; q < 50; ++q) {
+    const Vec3 p{rng.range(-1.2, 1.2), rng.range(-1.2, 1.2), rng.range(-1.2, 1.2)};
+    const double r = rng.range(0.01, 0.4);
+    std::vector<uint32_t> want;
+    for (uint32_t i = 0; i < s.size(); ++i) {
+      const Vec3 d = s.position(i) - p;
+      if (dot(d, d) <= r * r) want.push_back(i);
+    }
+    EXPECT_EQ(index.within(p, r), want);
+  }
+}
+
+TEST(CentreIndex, EmptySceneAnswersNothing) {
+  const GaussianScene s;
+  const CentreIndex index(s);
+  EXPECT_TRUE(index.nearest({0, 0, 0}, 5, 0).empty());
+  EXPECT_TRUE(index.within({0, 0, 0}, 1.0).empty());
+}
+
+}  // namespace
+}  // namespace isegman
