@@ -154,6 +154,15 @@ int run_eval_ablation(const Args& args) {
   for (size_t i = 0; i < tasks.size() + fixture_tasks.size(); ++i) std::printf("---|");
   std::printf("\n");
   std::fflush(stdout);
+  auto write_overlays = [&](const segment::Session& session, const std::string& name) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::path(overlays) / name;
+    fs::create_directories(dir);
+    for (size_t k = 0; k < session.views().size(); ++k)
+      write_png((dir / (session.views()[k].name + ".png")).string(),
+                segment::make_overlay(session.views()[k].rgb, session.view_states()[k],
+                                      session.selection_coverage(int(k))));
+  };
   for (size_t ci = 0; ci < configs.size(); ++ci) {
     segment::SessionOptions so = setup.session;
     configs[ci].apply(so);
@@ -171,16 +180,8 @@ int run_eval_ablation(const Args& args) {
       macc += acc;
       worst = std::min(worst, iou);
       ms += tm.ms_interaction();
-      if (!overlays.empty() && ci == 0) {  // the first configuration's evidence, per task and view
-        namespace fs = std::filesystem;
-        const fs::path dir = fs::path(overlays) / (s->name + "_" + s->scene.objects[size_t(t->object)].name);
-        fs::create_directories(dir);
-        for (size_t k = 0; k < session->views().size(); ++k) {
-          const auto& v = session->views()[k];
-          write_png((dir / (v.name + ".png")).string(),
-                      segment::make_overlay(v.rgb, session->view_states()[k], session->selection_coverage(int(k))));
-        }
-      }
+      if (!overlays.empty() && ci == 0)  // the first configuration's evidence, per task and view
+        write_overlays(*session, s->name + "_" + s->scene.objects[size_t(t->object)].name);
     }
     for (const auto& t : fixture_tasks) {
       const SceneBundle& b = fixture_scenes.at(t.scene_dir);
@@ -195,16 +196,7 @@ int run_eval_ablation(const Args& args) {
       macc += r.accuracy;
       worst = std::min(worst, r.iou);
       ms += tm.ms_interaction();
-      if (!overlays.empty() && ci == 0) {
-        namespace fs = std::filesystem;
-        const fs::path dir = fs::path(overlays) / t.name;
-        fs::create_directories(dir);
-        for (size_t k = 0; k < session->views().size(); ++k) {
-          const auto& v = session->views()[k];
-          write_png((dir / (v.name + ".png")).string(),
-                    segment::make_overlay(v.rgb, session->view_states()[k], session->selection_coverage(int(k))));
-        }
-      }
+      if (!overlays.empty() && ci == 0) write_overlays(*session, t.name);
     }
     const double k = double(tasks.size() + fixture_tasks.size());
     std::printf("| %s | %.2f | %.1f | %.2f | %.2f s |", configs[ci].label.c_str(), 100 * miou / k, 100 * worst,
