@@ -63,7 +63,10 @@ std::vector<bool> VoteAccumulator::select(double tau, double min_total, const Ce
 
 ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const Image& mask, const Image& depth,
                         const ViewVotes& positive, const ViewVotes& total) {
-  if (depth.width != mask.width || depth.height != mask.height) throw Error("centred_votes: depth and mask sizes differ");
+  // No depth image (a view built without one): centres are not tested for being hidden.
+  const bool have_depth = !depth.data.empty();
+  if (have_depth && (depth.width != mask.width || depth.height != mask.height))
+    throw Error("centred_votes: depth and mask sizes differ");
   ViewVotes out;
   size_t t = 0;
   for (size_t k = 0; k < positive.index.size(); ++k) {
@@ -72,7 +75,7 @@ ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const 
     if (!camera.project(scene.position(g), u, v, &z)) continue;
     const int x = int(std::floor(u)), y = int(std::floor(v));
     if (x < 0 || y < 0 || x >= mask.width || y >= mask.height || !(mask.at(x, y) > 0.5f)) continue;
-    const double surface = depth.at(x, y);
+    const double surface = have_depth ? double(depth.at(x, y)) : 0.0;
     if (surface > 0 && z > surface * 1.05 + 2.0 * depth_extent(scene, camera, g)) continue;
     while (t < total.index.size() && total.index[t] < g) ++t;
     if (t == total.index.size() || total.index[t] != g) continue;

@@ -76,6 +76,7 @@ class VoteAccumulator {
 // there: its depth is at most the rendered expected depth (`depth`, same size) plus a 5 %
 // margin and two of its depth standard deviations. A Gaussian behind the object (the roof
 // under a turret) has its centre inside the mask but hidden, and only its rim shows.
+// An empty `depth` skips that test.
 ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const Image& mask, const Image& depth,
                         const ViewVotes& positive, const ViewVotes& total);
 
