@@ -398,8 +398,11 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // `raw` (optional): the mask's votes already computed in the inspection pass.
   auto vote = [&](size_t k, ViewState& vs, const std::vector<bool>* selection, ViewVotes* raw) {
     const SegmentView& view = views_[k];
+    // The mask at the view's resolution, built once for the votes and the centre evidence.
+    Image mask;
+    if (!raw || o.centre_rule.enabled) mask = mask_image(vs.mask, view.camera.width, view.camera.height);
     if (raw) vs.positive = std::move(*raw);
-    else vs.positive = masked_votes(view.frame, mask_image(vs.mask, view.camera.width, view.camera.height), o.threads);
+    else vs.positive = masked_votes(view.frame, mask, o.threads);
     vs.neutral = ViewVotes{};
     if (o.depth_layers) {
       std::vector<double> seeds;
@@ -414,8 +417,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     }
     ViewVotes centred;
     if (o.centre_rule.enabled)
-      centred = centred_votes(scene_, view.camera, mask_image(vs.mask, view.camera.width, view.camera.height),
-                              view.depth, vs.positive, view.all_votes);
+      centred = centred_votes(scene_, view.camera, mask, view.depth, vs.positive, view.all_votes);
     acc.add(vs.positive, view.all_votes, +1, &vs.neutral, &centred);
     vs.status = ViewStatus::Accepted;
     ++rep.accepted;
