@@ -63,6 +63,9 @@ try {
   await done;
   console.log(`${query || '(adaptive)'}: ${r.fps.toFixed(1)} frames/s; ${r.caption}`);
   if (r.stats) console.log('page counters:', JSON.stringify(r.stats));
+  // Frames the display compositor presented (a frame drawn but never swapped is not seen).
+  const swaps = events.filter((e) => e.name === 'SkiaOutputSurfaceImplOnGpu::SwapBuffers' && e.ph === 'X').length;
+  console.log(`presented: ${(swaps / seconds).toFixed(1)} frames/s (display compositor swaps)`);
   if (traceOut) fs.writeFileSync(traceOut, JSON.stringify(events));
   // Busy time per thread: top-level complete events (ph X) on each thread, nested ones not double counted.
   const names = {}, pnames = {};

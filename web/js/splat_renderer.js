@@ -16,8 +16,17 @@ const ROW = 1024;  // splats per texture row (3 texels each)
 const SORT_INTERVAL_MS = 80;  // least time between two sorts while moving
 // While moving, quality steps down until a frame takes under ~50 ms (SwiftShader, the
 // software WebGL of a machine without GPU, draws all of fern at 960x540 in ~0.8 s):
-// [resolution divisor, share of the splats drawn, most important first].
-const LADDER = [[1, 1], [1, 1 / 2], [1.5, 1 / 2], [2, 1 / 2], [2, 1 / 4], [3, 1 / 4], [3, 1 / 8], [4, 1 / 8], [4, 1 / 16], [6, 1 / 16]];
+// [resolution divisor, share of the splats drawn, most important first]. Frames drawn
+// while moving go straight into a WebGL canvas of the step's resolution, scaled to the
+// view by the compositor: drawing into a framebuffer and blitting it onto a full-size
+// canvas cost SwiftShader ~30 ms a frame with nothing drawn (16 instead of 31 frames/s).
+// That canvas is resized only while the still frame is shown (a resize makes Chromium
+// wait for the GPU process), so within a drag only the share of splats adapts and the
+// resolution follows at the next drag. The still frame is drawn at full resolution into a
+// framebuffer, read back without stalling (a pixel-pack buffer and a fence) and shown by
+// a 2D canvas.
+const LADDER = [[2, 1], [2, 1 / 2], [2, 1 / 4], [3, 1 / 4], [3, 1 / 8], [4, 1 / 8], [4, 1 / 16], [6, 1 / 16], [6, 1 / 32]];
+const STILL = [1, 1];
 
 function compile(gl, type, src) {
   const s = gl.createShader(type);
@@ -59,16 +68,23 @@ export function lookAt(spec, width, height) {
 }
 
 export class SplatRenderer {
-  // Null when the browser has no WebGL2 (the page falls back to server renders).
-  static create(canvas, background) {
+  // Null when the browser has no WebGL2 (the page falls back to server renders). Puts its
+  // two canvases into `container`: the still frame (2D) and the frames while moving (WebGL).
+  static create(container, background) {
+    const canvas = document.createElement('canvas');
     const gl = canvas.getContext('webgl2', { antialias: false, alpha: false, depth: false, stencil: false, powerPreference: 'high-performance' });
-    return gl ? new SplatRenderer(canvas, gl, background) : null;
+    if (!gl) return null;
+    const still = document.createElement('canvas');
+    canvas.className = 'moving hidden'; still.className = 'still';
+    container.replaceChildren(still, canvas);
+    return new SplatRenderer(canvas, gl, background, still);
   }
 
-  constructor(canvas, gl, background) {
-    Object.assign(this, { canvas, gl, background });
+  constructor(canvas, gl, background, still) {
+    Object.assign(this, { canvas, gl, background, still });
     this.count = 0; this.drawCount = 0; this.camera = null; this.tint = 0.5; this.drawnSize = [0, 0];
-    this.moving = false; this.level = 4; this.window = null; this.moves = 0; this.fingerprint = null; this.maskRevision = -1;
+    this.targets = {}; this.readback = null; this.pbo = null; this.pboBytes = 0;
+    this.moving = false; this.level = 5; this.canvasDiv = LADDER[5][0]; this.window = null; this.moves = 0; this.fingerprint = null; this.maskRevision = -1;
     this.frames = 0; this.lastFrame = 0; this.dirty = false; this.onDraw = null;
     this.subsetWhileMoving = true;
     this.project = program(gl, projectVS(ROW), NOTHING_FS,
@@ -193,7 +209,7 @@ export class SplatRenderer {
   }
 
   // The quality step in use: full when still (or with subsetWhileMoving off).
-  step() { return this.moving && this.subsetWhileMoving ? LADDER[this.level] : LADDER[0]; }
+  step() { return this.moving && this.subsetWhileMoving ? [this.canvasDiv, LADDER[this.level][1]] : STILL; }
 
   // While moving, a lower resolution and the most important splats only (the step the last
   // movement settled on); when still, everything at full resolution.
@@ -263,14 +279,10 @@ export class SplatRenderer {
   // queueing another; frames queued behind it were drawn and then never shown.
   frame() {
     const gl = this.gl;
-    if (this.fence) {
-      if (gl.getSyncParameter(this.fence, gl.SYNC_STATUS) !== gl.SIGNALED) {
-        this.stats.waits = (this.stats.waits || 0) + 1;
-        requestAnimationFrame(() => this.frame());
-        return;
-      }
-      gl.deleteSync(this.fence);
-      this.fence = null;
+    if (!this.gpuIdle()) {
+      this.stats.waits = (this.stats.waits || 0) + 1;
+      requestAnimationFrame(() => this.frame());
+      return;
     }
     this.dirty = false;
     // A drag just started: the order still holds every splat (hundreds of ms to draw in
@@ -287,6 +299,62 @@ export class SplatRenderer {
     this.lastFrame = performance.now();
     this.frames++;
     this.onDraw?.();
+    if (this.readback) this.pollReadback();
+  }
+
+  // Whether the last frame is done on the GPU (its fence signalled); finishes the still
+  // frame's read back then.
+  gpuIdle() {
+    const gl = this.gl;
+    if (!this.fence) return true;
+    if (gl.getSyncParameter(this.fence, gl.SYNC_STATUS) !== gl.SIGNALED) return false;
+    gl.deleteSync(this.fence);
+    this.fence = null;
+    if (this.readback) this.finishReadback();
+    return true;
+  }
+
+  // The still frame's pixels arrive without a redraw asking for them: check every animation frame.
+  pollReadback() {
+    if (this.polling) return;
+    this.polling = true;
+    const poll = () => {
+      if (!this.readback) { this.polling = false; return; }
+      if (this.gpuIdle()) { this.polling = false; return; }
+      requestAnimationFrame(poll);
+    };
+    requestAnimationFrame(poll);
+  }
+
+  // The still frame (read into the pixel-pack buffer) onto the 2D canvas, which then
+  // replaces the moving canvas in the view.
+  finishReadback() {
+    const gl = this.gl, { w, h } = this.readback;
+    this.readback = null;
+    if (!this.pixels || this.pixels.length !== 4 * w * h) this.pixels = new Uint8Array(4 * w * h);
+    gl.bindBuffer(gl.PIXEL_PACK_BUFFER, this.pbo);
+    gl.getBufferSubData(gl.PIXEL_PACK_BUFFER, 0, this.pixels, 0, 4 * w * h);
+    gl.bindBuffer(gl.PIXEL_PACK_BUFFER, null);
+    if (this.still.width !== w || this.still.height !== h) { this.still.width = w; this.still.height = h; this.stillCtx = null; }
+    this.stillCtx ||= this.still.getContext('2d', { alpha: false });
+    if (!this.image || this.image.width !== w || this.image.height !== h) this.image = new ImageData(w, h);
+    const row = 4 * w, img = this.image.data, px = this.pixels;
+    for (let y = 0; y < h; ++y) img.set(px.subarray((h - 1 - y) * row, (h - y) * row), y * row);  // bottom row first
+    this.stillCtx.putImageData(this.image, 0, 0);
+    this.show(true);
+    // The moving canvas, hidden now, takes the resolution the last drag settled on.
+    this.canvasDiv = LADDER[this.level][0];
+    this.fitCanvas(this.subsetWhileMoving ? this.canvasDiv : 1);
+    this.stillFrames = (this.stillFrames || 0) + 1;
+    this.onDraw?.();
+  }
+
+  // Which canvas the view shows: the still frame (2D) or the frames drawn while moving.
+  show(still) {
+    if (this.showing === still) return;
+    this.showing = still;
+    this.still.classList.toggle('hidden', !still);
+    this.canvas.classList.toggle('hidden', still);
   }
 
   // While moving, every ~0.4 s: when the camera moved more often than frames were drawn
@@ -308,41 +376,62 @@ export class SplatRenderer {
     this.window = { t0: now, frames: 0, moves: this.moves };
   }
 
+  // Still (or ?full): every splat at the camera's resolution into a framebuffer, read back
+  // into the 2D canvas once done (finishReadback). Moving: the step's resolution into the
+  // WebGL canvas (half the camera's size), directly or through a smaller framebuffer
+  // blitted (scaled) onto it. The canvas is resized only when the camera's size changes:
+  // a resize makes Chromium wait for the GPU process (~170 ms on SwiftShader).
   draw() {
-    const gl = this.gl, bg = this.background;
-    let c = this.camera;
-    // The canvas keeps the camera's size; a lower step draws into a smaller framebuffer
-    // that is blitted (scaled) onto it. Resizing the canvas itself made Chromium wait for
-    // the GPU process (a glGetError round trip, ~170 ms each time on SwiftShader).
-    let low = null;
-    if (c) {
-      if (this.canvas.width !== c.width || this.canvas.height !== c.height) { this.canvas.width = c.width; this.canvas.height = c.height; }
-      const div = this.step()[0];
-      const w = Math.max(16, Math.round(c.width / div)), h = Math.max(16, Math.round(c.height / div));
-      if (w !== c.width || h !== c.height) {
-        low = this.lowTarget(w, h);
-        c = { ...c, width: w, height: h, fx: (c.fx * w) / c.width, fy: (c.fy * h) / c.height };
-      }
+    const c = this.camera;
+    if (!c) return;
+    if (!this.moving) {
+      this.renderInto(this.target('full', c.width, c.height), c);
+      this.startReadback(c.width, c.height);
+      return;
     }
-    this.drawnSize = c ? [c.width, c.height] : [this.canvas.width, this.canvas.height];
-    gl.bindFramebuffer(gl.FRAMEBUFFER, low);
-    gl.viewport(0, 0, this.drawnSize[0], this.drawnSize[1]);
-    gl.clearColor(bg[0], bg[1], bg[2], 1);
-    gl.clear(gl.COLOR_BUFFER_BIT);
-    if (c && this.drawCount) this.drawSplats(c);
-    if (low) {
-      gl.bindFramebuffer(gl.READ_FRAMEBUFFER, low);
-      gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
-      gl.blitFramebuffer(0, 0, c.width, c.height, 0, 0, this.canvas.width, this.canvas.height, gl.COLOR_BUFFER_BIT, gl.LINEAR);
-      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    }
+    this.fitCanvas(this.subsetWhileMoving ? this.canvasDiv : 1);
+    const w = this.canvas.width, h = this.canvas.height;
+    this.renderInto(null, { ...c, width: w, height: h, fx: (c.fx * w) / c.width, fy: (c.fy * h) / c.height });
+    this.readback = null;  // a still frame still on its way is no longer the view
+    this.show(false);
   }
 
-  // The framebuffer of a lower step (its renderbuffer reallocated when the size changes).
-  lowTarget(w, h) {
+  // The moving canvas at the camera's size / div (unchanged when it already is).
+  fitCanvas(div) {
+    const c = this.camera;
+    if (!c) return;
+    const w = Math.max(16, Math.round(c.width / div)), h = Math.max(16, Math.round(c.height / div));
+    if (this.canvas.width !== w || this.canvas.height !== h) { this.canvas.width = w; this.canvas.height = h; }
+  }
+
+  // Clears framebuffer `fb` (null: the canvas) and draws the splats for camera `c` (its size).
+  renderInto(fb, c) {
+    const gl = this.gl, bg = this.background;
+    this.drawnSize = [c.width, c.height];
+    gl.bindFramebuffer(gl.FRAMEBUFFER, fb);
+    gl.viewport(0, 0, c.width, c.height);
+    gl.clearColor(bg[0], bg[1], bg[2], 1);
+    gl.clear(gl.COLOR_BUFFER_BIT);
+    if (this.drawCount) this.drawSplats(c);
+  }
+
+  // The pixels of the 'full' framebuffer into the pixel-pack buffer (on the GPU, no wait).
+  startReadback(w, h) {
     const gl = this.gl;
-    if (!this.low) this.low = { fb: gl.createFramebuffer(), rb: gl.createRenderbuffer(), w: 0, h: 0 };
-    const L = this.low;
+    if (!this.pbo) this.pbo = gl.createBuffer();
+    gl.bindBuffer(gl.PIXEL_PACK_BUFFER, this.pbo);
+    if (this.pboBytes !== 4 * w * h) { gl.bufferData(gl.PIXEL_PACK_BUFFER, 4 * w * h, gl.STREAM_READ); this.pboBytes = 4 * w * h; }
+    gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.targets.full.fb);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, 0);
+    gl.bindBuffer(gl.PIXEL_PACK_BUFFER, null);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    this.readback = { w, h };
+  }
+
+  // A framebuffer by name (its renderbuffer reallocated when the size changes).
+  target(name, w, h) {
+    const gl = this.gl;
+    const L = (this.targets[name] ||= { fb: gl.createFramebuffer(), rb: gl.createRenderbuffer(), w: 0, h: 0 });
     if (L.w !== w || L.h !== h) {
       gl.bindRenderbuffer(gl.RENDERBUFFER, L.rb);
       gl.renderbufferStorage(gl.RENDERBUFFER, gl.RGBA8, w, h);
@@ -411,11 +500,13 @@ export class SplatRenderer {
     gl.bindVertexArray(null);
   }
 
-  // The current picture as RGBA bytes (drawn and read in one task, so no preserved buffer).
+  // The still picture at the camera's size as RGBA bytes (drawn and read at once).
   snapshot() {
-    this.draw();
-    const gl = this.gl, w = this.canvas.width, h = this.canvas.height, px = new Uint8Array(4 * w * h);
+    const gl = this.gl, c = this.camera, w = c.width, h = c.height, px = new Uint8Array(4 * w * h);
+    this.renderInto(this.target('full', w, h), c);
+    gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.targets.full.fb);
     gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
     return { width: w, height: h, data: px };  // bottom row first
   }
 }
