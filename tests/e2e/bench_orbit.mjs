@@ -5,7 +5,8 @@
 // subset of the splats while moving, adapted to the frame rate), the WebGL view drawing
 // every splat at full resolution (?full) and the server-render fallback (?nogl).
 // Chromium here has no GPU: WebGL2 runs on SwiftShader (software).
-//   node tests/e2e/bench_orbit.mjs [scene] [--seconds S] [--only webgl|full|server]
+//   node tests/e2e/bench_orbit.mjs [scene] [--seconds S] [--only webgl|full|server] [--shots DIR]
+// --shots saves the view half way through the measured drag and once still again.
 // ISEGMAN_BIN (default build/isegman) names the binary.
 import { spawn } from 'node:child_process';
 import fs from 'node:fs';
@@ -20,6 +21,9 @@ const secIdx = args.indexOf('--seconds');
 const seconds = secIdx >= 0 ? Number(args.splice(secIdx, 2)[1]) : 6;
 const onlyIdx = args.indexOf('--only');  // one row: webgl, full or server (repeated A/B runs)
 const only = onlyIdx >= 0 ? args.splice(onlyIdx, 2)[1] : null;
+const shotsIdx = args.indexOf('--shots');  // screenshots of the view while moving and still
+const shots = shotsIdx >= 0 ? args.splice(shotsIdx, 2)[1] : null;
+if (shots) fs.mkdirSync(shots, { recursive: true });
 const scene = args[0] || path.join(root, '..', 'shared', 'fixtures', 'fern', 'scene');
 const bin = process.env.ISEGMAN_BIN || path.join(root, 'build', 'isegman');
 const CHROMIUM = '/usr/bin/chromium';
@@ -38,7 +42,7 @@ const url = await new Promise((resolve, reject) => {
 const browser = await chromium.launch({ executablePath: CHROMIUM,
   args: ['--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--ignore-gpu-blocklist'] });
 
-async function measure(query) {
+async function measure(query, name) {
   const page = await browser.newPage({ viewport: { width: 1366, height: 768 } });
   await page.goto(`${url}${query}`);
   await page.addStyleTag({ content: '.stage { flex: none !important; width: 964px !important; height: 544px !important; }' });
@@ -74,8 +78,17 @@ async function measure(query) {
   await drag(3);
   await page.waitForTimeout(gl ? 2000 : 500);
   const f0 = await count();
-  const { caption, ms } = await drag(seconds);
+  const measured = drag(seconds);
+  if (shots) {
+    await page.waitForTimeout((seconds * 1000) / 2);
+    await (await page.$('#frame')).screenshot({ path: path.join(shots, `${name}-moving.png`) });
+  }
+  const { caption, ms } = await measured;
   const f1 = await count();
+  if (shots) {
+    await page.waitForTimeout(gl ? 4000 : 2000);
+    await (await page.$('#frame')).screenshot({ path: path.join(shots, `${name}-still.png`) });
+  }
   await page.close();
   const drawn = caption.map((c) => c.match(/([\d,]+) of [\d,]+ splats · (\d+)×(\d+)/)).filter(Boolean)
     .map((m) => [Number(m[1].replace(/,/g, '')), Number(m[2]) * Number(m[3])]);
@@ -89,8 +102,8 @@ try {
     .filter((r) => !only || r[2] === only);
   const load = () => os.loadavg().map((v) => v.toFixed(1)).join(' ');
   console.log(`scene ${scene}, ${seconds} s of orbiting each; CPU ${os.cpus()[0].model} x${os.cpus().length}, load average ${load()}`);
-  for (const [name, q] of rows) {
-    const r = await measure(q);
+  for (const [name, q, key] of rows) {
+    const r = await measure(q, key);
     console.log(`${name.padEnd(28)} ${r.fps.toFixed(1).padStart(6)} frames/s  view ${r.size}` +
       r.drawn + `  (load ${load()})`);
   }

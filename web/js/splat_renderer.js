@@ -275,13 +275,15 @@ export class SplatRenderer {
   }
 
   // One frame in flight: while the GPU (SwiftShader's thread, on a machine without GPU)
-  // has not finished the previous frame, wait for the next animation frame instead of
-  // queueing another; frames queued behind it were drawn and then never shown.
+  // has not finished the previous frame, check again a few ms later instead of queueing
+  // another; frames queued behind it were drawn and then never shown. (Waiting for the
+  // next animation frame instead rounded every frame up to a multiple of the display's
+  // interval: a 40 ms frame took 50.)
   frame() {
     const gl = this.gl;
     if (!this.gpuIdle()) {
       this.stats.waits = (this.stats.waits || 0) + 1;
-      requestAnimationFrame(() => this.frame());
+      setTimeout(() => this.frame(), 3);
       return;
     }
     this.dirty = false;

@@ -174,6 +174,11 @@ export class Viewer {
     const g = this.gl;
     this.frame.dataset.rendered = String(g.frames);
     if (!this.usesGl()) return;
+    // While moving, the caption changes at most twice a second: each change is a relayout,
+    // repaint and raster of its layer, CPU time a software-GL frame needs.
+    const now = performance.now();
+    if (g.moving && now - (this.captionAt || 0) < 500) return;
+    this.captionAt = now;
     const text = `free camera · WebGL · ${g.drawCount.toLocaleString()} of ${g.count.toLocaleString()} splats` +
       ` · ${g.drawnSize[0]}×${g.drawnSize[1]}` + (g.moving ? ' (moving: reduced)' : '') + (this.fly ? ' · fly (WASD/QE)' : '');
     if (this.caption.textContent !== text) this.caption.textContent = text;  // no relayout per frame
