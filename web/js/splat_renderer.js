@@ -347,7 +347,6 @@ export class SplatRenderer {
     // The moving canvas, hidden now, takes the resolution the last drag settled on.
     this.canvasDiv = LADDER[this.level][0];
     this.fitCanvas(this.subsetWhileMoving ? this.canvasDiv : 1);
-    this.stillFrames = (this.stillFrames || 0) + 1;
     this.onDraw?.();
   }
 
