@@ -82,7 +82,7 @@ void BM_Interaction(benchmark::State& state) {
   if (state.range(0) == 0) {
     so.depth_layers = so.agreement_inspection = so.choose_candidate = so.negative_regions = false;
     so.selection_prompt_rounds = 0;
-    so.see_through = so.coherence = so.centre_rule.enabled = false;
+    so.see_through = so.coherence = so.centre_rule.enabled = so.background_gate = false;
     so.propagation.hidden_fallback = true;
   }
   f->session->set_options(so);

@@ -55,12 +55,13 @@ int run_eval_ablation(const Args& args) {
       {"paper: hybrid + overlap IIM", [](segment::SessionOptions& o) {
          o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
          o.selection_prompt_rounds = 0;
-         o.see_through = o.coherence = o.centre_rule.enabled = false;
+         o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
          o.propagation.hidden_fallback = true;
        }},
       {"- depth layers", [](segment::SessionOptions& o) { o.depth_layers = false; }},
       {"- local depth layers", [](segment::SessionOptions& o) { o.layer_options.region = 0; }},
       {"- Gaussian depth extents", [](segment::SessionOptions& o) { o.layer_options.extent_sigmas = 0; }},
+      {"- background gate", [](segment::SessionOptions& o) { o.background_gate = false; }},
       {"- see through occluders", [](segment::SessionOptions& o) { o.see_through = false; }},
       {"- neighbour coherence", [](segment::SessionOptions& o) { o.coherence = false; }},
       {"- centre evidence", [](segment::SessionOptions& o) { o.centre_rule.enabled = false; }},

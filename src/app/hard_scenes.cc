@@ -169,6 +169,83 @@ EvalScene garden(const EvalSetOptions& opt) {
   return s;
 }
 
+// Forward-facing capture where the background is close behind what is clicked: a shrub
+// planted against a wall (its back leaves a few centimetres from the bricks), slats of a
+// screen just in front of the same wall, a hoop lying on the floor (the floor shows in its
+// hole). No empty depth range separates these objects from what their gaps show.
+EvalScene alcove(const EvalSetOptions& opt) {
+  EvalScene s;
+  s.name = "alcove";
+  DemoScene& demo = s.scene;
+  GaussianScene& g = demo.bundle.gaussians;
+  g.sh_degree = 3;
+  SplitMix64 rng(29);
+  SceneBuilder b{g, demo.labels, rng, 3};
+  const double d = opt.density, sz = 1 / std::sqrt(d);
+  const double wall_y = 1.6;
+  for (int i = 0, n = int(8000 * d); i < n; ++i) {  // plastered wall with faint panels
+    Vec3 p{rng.range(-2.6, 2.6), wall_y, rng.range(0, 2.6)};
+    const double panel = 0.08 * cell_noise(int(std::floor(p.x / 0.6)), int(std::floor(p.z / 0.6)));
+    b.splat(p, {0, -1, 0}, 0.05 * sz, Vec3{0.72, 0.70, 0.62} + Vec3{1, 1, 1} * panel, -1, 0.02);
+  }
+  for (int i = 0, n = int(7000 * d); i < n; ++i) {  // wooden floor
+    Vec3 p{rng.range(-2.6, 2.6), rng.range(-2.2, wall_y), 0};
+    const int plank = int(std::floor(p.x / 0.25));
+    b.splat(p, {0, 0, 1}, 0.05 * sz, Vec3{0.50, 0.36, 0.22} + Vec3{1, 0.8, 0.6} * (0.15 * cell_noise(plank, 3)), -1,
+            0.02);
+  }
+  // The shrub: leaves in a half-ellipsoid whose back reaches 4 cm from the wall.
+  const Vec3 shrub_c{-1.0, wall_y - 0.39, 1.0};
+  const int shrub = add_object(demo, "shrub", shrub_c, 0.6f);
+  for (int leaf = 0, n = int(110 * std::max(1.0, d)); leaf < n; ++leaf) {
+    Vec3 u;
+    do u = {rng.range(-1, 1), rng.range(-1, 0), rng.range(-1, 1)};
+    while (dot(u, u) > 1);
+    const Vec3 c = shrub_c + Vec3{u.x * 0.5, u.y * 0.35, u.z * 0.5};
+    const Vec3 dir = normalized(Vec3{rng.normal(), rng.normal() * 0.3, rng.normal()});
+    const Vec3 nrm = normalized(Vec3{rng.normal() * 0.4, -1, rng.normal() * 0.4});
+    const Vec3 col{rng.range(0.10, 0.25), rng.range(0.38, 0.58), rng.range(0.10, 0.20)};
+    for (int k = -2; k <= 2; ++k) b.strip(c + dir * (k * 0.03), nrm, dir, 0.026, 0.02 * (1 - std::abs(k) * 0.2), col, shrub, 0.04);
+  }
+  for (int i = 0; i < 50; ++i) {  // its stem, down to the floor
+    const double t = i / 49.0;
+    b.strip(Vec3{-1.0, wall_y - 0.3, 0.0} * (1 - t) + (shrub_c - Vec3{0, 0.05, 0.3}) * t, {0, -1, 0}, {0, 0, 1}, 0.02,
+            0.012, {0.30, 0.22, 0.12}, shrub, 0.02);
+  }
+  // A screen of vertical slats 6 cm in front of the wall, with two cross rails.
+  const double screen_y = wall_y - 0.06;
+  const int screen = add_object(demo, "screen", {0.9, screen_y, 1.0}, 0.8f);
+  for (int k = 0; k < 6; ++k)
+    for (double t = 0.35; t < 1.75; t += 0.025)
+      for (double off : {-0.014, 0.014})
+        b.strip({0.45 + k * 0.17 + off, screen_y, t}, {0, -1, 0}, {0, 0, 1}, 0.022, 0.016, {0.25, 0.16, 0.10}, screen, 0.02);
+  for (double z : {0.6, 1.5})
+    for (double t = 0.4; t < 1.35; t += 0.025)
+      b.strip({t, screen_y - 0.02, z}, {0, -1, 0}, {1, 0, 0}, 0.022, 0.018, {0.25, 0.16, 0.10}, screen, 0.02);
+  // A hoop lying on the floor: a torus of tube radius 4 cm around a 22 cm ring.
+  const Vec3 hoop_c{-0.1, 0.1, 0.04};
+  const int hoop = add_object(demo, "hoop", hoop_c, 0.3f);
+  for (int i = 0, n = int(3000 * d); i < n; ++i) {
+    const double a = rng.range(0, 2 * M_PI), t = rng.range(0, 2 * M_PI);
+    const Vec3 radial{std::cos(a), std::sin(a), 0};
+    const Vec3 nrm = radial * std::cos(t) + Vec3{0, 0, std::sin(t)};
+    const Vec3 col = std::fmod(a, M_PI / 4) < 0.12 ? Vec3{0.95, 0.95, 0.92} : Vec3{0.15, 0.55, 0.75};
+    b.splat(hoop_c + radial * 0.22 + nrm * 0.04, nrm, 0.018 * sz, col, hoop, 0.05);
+  }
+  int id = 0;
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 4; ++col) {
+      const Vec3 eye{-0.9 + 0.6 * col, -2.8, 1.0 + 0.35 * row};
+      const Vec3 target{eye.x * 0.3, 0.8, 0.6};
+      demo.bundle.cameras.push_back(
+          named(Camera::look_at(eye, target, {0, 0, 1}, opt.width, opt.height, 62.0), id++, "front"));
+    }
+  add_task(s, "shrub", "gaps in front of a near background", shrub, shrub_c + Vec3{0.05, -0.3, 0.05}, 5);
+  add_task(s, "screen", "slats just in front of a wall", screen, {0.45 + 2 * 0.17, screen_y, 1.1}, 6);
+  add_task(s, "hoop", "ring lying on the floor", hoop, hoop_c + Vec3{0, -0.26, 0.04}, 9);
+  return s;
+}
+
 // An orbit capture of a courtyard: a crate behind a post, a thin pillar taller than the
 // frame, a tiny die, a lamp of three parts. `coarse` makes it of fewer, larger Gaussians.
 EvalScene courtyard(const EvalSetOptions& opt, bool coarse) {
@@ -275,6 +352,7 @@ bool find_click(const DemoScene& demo, int object, const Vec3& anchor, int first
 std::vector<EvalScene> make_eval_scenes(const EvalSetOptions& opt) {
   std::vector<EvalScene> out;
   out.push_back(garden(opt));
+  out.push_back(alcove(opt));
   out.push_back(courtyard(opt, false));
   out.push_back(courtyard(opt, true));
   out.push_back(orbit_demo(opt));

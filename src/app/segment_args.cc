@@ -21,6 +21,8 @@ const char* const kSegmentOptionsHelp =
     "  --no-depth-layers             let a mask vote for everything it shows, gaps included\n"
     "  --global-depth-layers         depth layers over the whole mask instead of per region\n"
     "  --no-depth-extents            depth layers from Gaussian centres only (not their depth extents)\n"
+    "  --no-background-gate          let a mask vote for the surface that continues from around it (the\n"
+    "                                floor inside a ring, a wall just behind a plant)\n"
     "  --no-see-through              segment what a click sees through gaps as the render shows it\n"
     "  --no-coherence                select by vote share > tau alone (no nearest-neighbour decision)\n"
     "  --no-centre-rule              no selection of shares in (0.5, tau] by their centres lying in the masks\n"
@@ -42,7 +44,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate",
                                           "no-candidate-choice", "hidden-fallback",
                                           "sam-negatives"};
   return f;
@@ -70,6 +72,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.coherence = !paper && !args.has("no-coherence");
   s.session.centre_rule.enabled = !paper && !args.has("no-centre-rule");
   if (args.has("no-depth-extents")) s.session.layer_options.extent_sigmas = 0;
+  s.session.background_gate = !paper && !args.has("no-background-gate");
   s.session.see_through = !paper && !args.has("no-see-through");
   s.session.agreement_inspection = !paper && !args.has("overlap-inspection");
   s.session.choose_candidate = !paper && !args.has("no-candidate-choice");

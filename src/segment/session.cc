@@ -398,22 +398,37 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // `raw` (optional): the mask's votes already computed in the inspection pass.
   auto vote = [&](size_t k, ViewState& vs, const std::vector<bool>* selection, ViewVotes* raw) {
     const SegmentView& view = views_[k];
-    // The mask at the view's resolution, built once for the votes and the centre evidence.
+    // The mask at the view's resolution, built once for the votes, the background gate and
+    // the centre evidence.
     Image mask;
-    if (!raw || o.centre_rule.enabled) mask = mask_image(vs.mask, view.camera.width, view.camera.height);
+    if (!raw || o.centre_rule.enabled || o.background_gate) mask = mask_image(vs.mask, view.camera.width, view.camera.height);
     if (raw) vs.positive = std::move(*raw);
     else vs.positive = masked_votes(view.frame, mask, o.threads);
     vs.neutral = ViewVotes{};
-    if (o.depth_layers) {
-      std::vector<double> seeds;
-      for (const Click& c : vs.clicks) {
-        if (c.label != 1) continue;
-        const int x = std::clamp(int(c.x), 0, view.camera.width - 1), y = std::clamp(int(c.y), 0, view.camera.height - 1);
-        if (view.alpha.at(x, y) > 0.5f && view.depth.at(x, y) > 0) seeds.push_back(view.depth.at(x, y));
+    // The clicked pixels' rendered depths: where the target is in this view.
+    BackgroundTarget target;
+    target.selection = selection;
+    std::vector<double> seeds;
+    for (const Click& c : vs.clicks) {
+      if (c.label != 1) continue;
+      const int x = std::clamp(int(c.x), 0, view.camera.width - 1), y = std::clamp(int(c.y), 0, view.camera.height - 1);
+      if (view.alpha.at(x, y) > 0.5f && view.depth.at(x, y) > 0) {
+        seeds.push_back(view.depth.at(x, y));
+        target.seeds.push_back({c.x, c.y});
       }
+    }
+    if (o.depth_layers) {
       GateReport g = gate_by_depth(scene_, view.camera, vs.positive, vs.neutral, seeds, selection, o.layer_options);
       vs.depth_layers = g.layers;
       vs.gated_share = g.gated_share;
+    }
+    if (o.background_gate && !vs.positive.index.empty()) {
+      // Background pixels must not be nearer than the target: outside the mask, nearer
+      // things are occluders (or the object itself), not the surface behind it.
+      const double near = near_depth(scene_, view.camera, vs.positive, 0.05);
+      const Image bg = background_inverse_depth(mask, view.depth, view.alpha,
+                                                near * (1 - o.background_options.occluder_margin), o.background_options);
+      vs.background_gaussians = gate_background(scene_, view.camera, bg, target, vs.positive, vs.neutral, o.background_options);
     }
     ViewVotes centred;
     if (o.centre_rule.enabled)

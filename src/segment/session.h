@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "models/sam.h"
+#include "segment/background_gate.h"
 #include "segment/coherence.h"
 #include "segment/depth_layers.h"
 #include "segment/propagation.h"
@@ -31,6 +32,10 @@ struct SessionOptions {
   // Gate each mask's votes to the target's depth layer (no vote for what a gap shows).
   bool depth_layers = true;
   DepthLayerOptions layer_options;
+  // Make neutral what lies on the surface continuing from around the mask (the floor inside
+  // a ring, a wall just behind a plant): background_gate.h.
+  bool background_gate = true;
+  BackgroundOptions background_options;
   // IIM by agreement: a mask must hold most of the selection rendered in its view and be
   // partly covered by it (both directions), instead of merely touching it.
   bool agreement_inspection = true;
@@ -84,6 +89,7 @@ struct ViewState {
   int candidate = 0;                   // which of SAM's candidates was used
   int depth_layers = 0;                // depth layers the mask's content splits into
   double gated_share = 0;              // share of the mask's weight outside the target's layer
+  size_t background_gaussians = 0;     // Gaussians of the mask made neutral as background seen through gaps
   bool inspected = false;              // overlap was measured (not for the clicked view, which votes first)
   ViewVotes positive;                  // P-votes of the mask (when accepted)
   ViewVotes neutral;                   // depth-gated weights that count neither way

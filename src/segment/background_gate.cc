@@ -1,0 +1,212 @@
+#include "segment/background_gate.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace isegman::segment {
+
+namespace {
+
+struct Estimates {
+  std::vector<float> sum, lo, hi;
+  std::vector<uint8_t> count;
+};
+
+// One line of pixels (in order along the direction): every run of mask pixels gets the
+// inverse depth interpolated between the usable outside samples at both of its ends.
+void interpolate_line(const std::vector<uint32_t>& line, const Image& mask, const Image& depth, const Image& alpha,
+                      double near_limit, const BackgroundOptions& o, int max_span, Estimates& e) {
+  const size_t n = line.size();
+  auto inside = [&](size_t i) { return mask.data[line[i]] > 0.5f; };
+  auto inverse = [&](long i) -> float {
+    if (i < 0 || i >= long(n)) return 0.f;
+    const uint32_t p = line[size_t(i)];
+    const float z = depth.data[p];
+    return alpha.data[p] > 0.5f && z > 0 && z >= near_limit ? 1.f / z : 0.f;
+  };
+  // The inverse depth of line pixel i as a background sample, or 0 when it cannot serve:
+  // the surface must go on smoothly for 2 x `extent` pixels further out (a surface, not a
+  // thin bar in front of one: the rail of a screen whose one slat is the mask).
+  auto sample = [&](size_t i, long outward) -> float {
+    const float v = inverse(long(i));
+    if (o.extent <= 0 || v <= 0) return v;
+    const float v1 = inverse(long(i) + outward * o.extent), v2 = inverse(long(i) + 2 * outward * o.extent);
+    // Smooth: no bend between the three (a plane's inverse depth is linear along the line).
+    if (v1 <= 0 || v2 <= 0 || std::abs(v - 2 * v1 + v2) > o.agreement * v) return 0.f;
+    return v;
+  };
+  size_t i = 0;
+  while (i < n) {
+    if (!inside(i)) {
+      ++i;
+      continue;
+    }
+    size_t j = i;
+    while (j < n && inside(j)) ++j;  // run [i, j)
+    // Samples `skip` pixels past each border, with every pixel up to them outside the mask.
+    const long a = long(i) - 1 - o.skip, b = long(j) + o.skip;
+    bool ok = a >= 0 && b < long(n) && long(j - i) + 2 * o.skip + 2 <= max_span;
+    for (long k = a; ok && k < long(i); ++k) ok = !inside(size_t(k));
+    for (long k = long(j); ok && k <= b; ++k) ok = !inside(size_t(k));
+    const float s0 = ok ? sample(size_t(a), -1) : 0.f, s1 = ok ? sample(size_t(b), +1) : 0.f;
+    if (s0 > 0 && s1 > 0) {
+      const double span = double(b - a);
+      for (size_t k = i; k < j; ++k) {
+        const double t = double(long(k) - a) / span;
+        const float v = float((1 - t) * s0 + t * s1);
+        const uint32_t p = line[k];
+        e.sum[p] += v;
+        e.lo[p] = std::min(e.lo[p], v);
+        e.hi[p] = std::max(e.hi[p], v);
+        ++e.count[p];
+      }
+    }
+    i = j;
+  }
+}
+
+// Camera-space point of pixel (x, y) on the background surface (inverse depth inv).
+Vec3 surface_point(const Camera& camera, double x, double y, double inv) {
+  const double z = 1.0 / inv;
+  return {(x + 0.5 - camera.cx) / camera.fx * z, (y + 0.5 - camera.cy) / camera.fy * z, z};
+}
+
+// Whether flat Gaussian g (one scale well below the others: a piece of surface) is turned
+// away from the background surface at pixel (x, y): an object resting on the floor touches
+// the floor's surface with its side, whose Gaussians stand across it, while the floor seen
+// through a gap lies in it. Gaussians that are not flat tell nothing (false); where the
+// surface's orientation cannot be estimated, the Gaussian is left alone (true).
+bool crosses_surface(const GaussianScene& scene, const Camera& camera, const Image& bg, uint32_t g, int x, int y,
+                     double min_alignment) {
+  if (min_alignment <= 0 || scene.scales.size() < 3 * (size_t(g) + 1) || scene.rotations.size() < 4 * (size_t(g) + 1))
+    return false;
+  const float* sc = &scene.scales[3 * size_t(g)];
+  int thin = 0;
+  for (int a = 1; a < 3; ++a)
+    if (sc[a] < sc[thin]) thin = a;
+  const float mid = std::min(sc[(thin + 1) % 3], sc[(thin + 2) % 3]);
+  if (mid - sc[thin] < std::log(2.0f)) return false;  // not flat: less than 2x thinner (log scales)
+  // The surface's normal from its estimate at the neighbouring pixels (one-sided at edges).
+  auto at = [&](int px, int py) { return px >= 0 && py >= 0 && px < bg.width && py < bg.height ? bg.at(px, py) : 0.f; };
+  // A baseline of several pixels: the estimate is only good to `agreement`, which over one
+  // pixel would tilt the normal arbitrarily.
+  // Without enough estimate around the pixel to tell, the Gaussian stays where it is.
+  auto offset = [&](int ux, int uy) {  // the longest step (8, 4, then 2 pixels) with an estimate
+    for (int step : {8, 4, 2})
+      for (int sign : {1, -1})
+        if (at(x + sign * step * ux, y + sign * step * uy) > 0) return sign * step;
+    return 0;
+  };
+  const int dx = offset(1, 0), dy = offset(0, 1);
+  if (!dx || !dy) return true;
+  const float i0 = at(x, y), ix = at(x + dx, y), iy = at(x, y + dy);
+  const Vec3 p0 = surface_point(camera, x, y, i0);
+  const Vec3 n_surface = normalized(cross((surface_point(camera, x + dx, y, ix) - p0) * double(dx),
+                                          (surface_point(camera, x, y + dy, iy) - p0) * double(dy)));
+  const float* q = &scene.rotations[4 * size_t(g)];
+  const Mat3 r = Quat(q[0], q[1], q[2], q[3]).to_matrix();
+  const Vec3 n_world{r.m[0][thin], r.m[1][thin], r.m[2][thin]};
+  const Vec3 n_gaussian = camera.R * n_world;
+  return std::abs(dot(n_surface, n_gaussian)) < min_alignment;
+}
+
+}  // namespace
+
+double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVotes& votes, double share) {
+  std::vector<std::pair<double, double>> dw(votes.index.size());
+  double total = 0;
+  for (size_t k = 0; k < votes.index.size(); ++k) {
+    const uint32_t g = votes.index[k];
+    dw[k] = {camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]}).z,
+             double(votes.weight[k])};
+    total += dw[k].second;
+  }
+  std::sort(dw.begin(), dw.end());
+  double acc = 0;
+  for (const auto& [d, w] : dw) {
+    acc += w;
+    if (acc >= share * total) return d;
+  }
+  return dw.empty() ? 0.0 : dw.back().first;
+}
+
+Image background_inverse_depth(const Image& mask, const Image& depth, const Image& alpha, double near_limit,
+                               const BackgroundOptions& o) {
+  const int w = mask.width, h = mask.height;
+  Image out(w, h, 1);
+  const size_t npx = size_t(w) * h;
+  if (w == 0 || h == 0 || depth.data.size() != npx || alpha.data.size() != npx) return out;
+  const int max_span = o.max_span > 0 ? o.max_span : std::max(w, h) * 2;
+  Estimates e{std::vector<float>(npx, 0.f), std::vector<float>(npx, 1e30f), std::vector<float>(npx, -1e30f),
+              std::vector<uint8_t>(npx, 0)};
+  std::vector<uint32_t> line;
+  auto walk = [&](int x, int y, int dx, int dy) {
+    line.clear();
+    for (; x >= 0 && y >= 0 && x < w && y < h; x += dx, y += dy) line.push_back(uint32_t(y) * uint32_t(w) + uint32_t(x));
+    interpolate_line(line, mask, depth, alpha, near_limit, o, max_span, e);
+  };
+  for (int y = 0; y < h; ++y) walk(0, y, 1, 0);                           // rows
+  for (int x = 0; x < w; ++x) walk(x, 0, 0, 1);                           // columns
+  for (int y = 0; y < h; ++y) walk(0, y, 1, 1);                           // diagonals
+  for (int x = 1; x < w; ++x) walk(x, 0, 1, 1);
+  for (int y = 0; y < h; ++y) walk(0, y, 1, -1);                          // anti-diagonals
+  for (int x = 1; x < w; ++x) walk(x, h - 1, 1, -1);
+  for (size_t p = 0; p < npx; ++p) {
+    if (e.count[p] < o.min_directions) continue;
+    const float mean = e.sum[p] / float(e.count[p]);
+    if (e.hi[p] - e.lo[p] <= o.agreement * mean) out.data[p] = mean;
+  }
+  return out;
+}
+
+size_t gate_background(const GaussianScene& scene, const Camera& camera, const Image& background,
+                       const BackgroundTarget& target, ViewVotes& positive, ViewVotes& neutral,
+                       const BackgroundOptions& o) {
+  ViewVotes kept, moved;
+  double selected = 0, selected_moved = 0, at_seeds = 0, at_seeds_moved = 0;
+  for (size_t k = 0; k < positive.index.size(); ++k) {
+    const uint32_t g = positive.index[k];
+    const Vec3 c = camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]});
+    bool behind = false;
+    if (c.z > 0) {
+      const double u = camera.fx * c.x / c.z + camera.cx, v = camera.fy * c.y / c.z + camera.cy;
+      if (u >= 0 && v >= 0 && u < background.width && v < background.height) {
+        const float bg = background.at(int(u), int(v));
+        behind = bg > 0 && 1.0 / c.z <= bg * (1 + o.tolerance) &&
+                 !crosses_surface(scene, camera, background, g, int(u), int(v), o.min_alignment);
+      }
+      for (const BackgroundTarget::Seed& seed : target.seeds)
+        if (std::abs(u - seed.x) <= o.seed_radius && std::abs(v - seed.y) <= o.seed_radius) {
+          at_seeds += double(positive.weight[k]);
+          if (behind) at_seeds_moved += double(positive.weight[k]);
+          break;
+        }
+    }
+    if (target.selection && (*target.selection)[g]) {
+      selected += double(positive.weight[k]);
+      if (behind) selected_moved += double(positive.weight[k]);
+    }
+    ViewVotes& to = behind ? moved : kept;
+    to.index.push_back(g);
+    to.weight.push_back(positive.weight[k]);
+  }
+  if (moved.index.empty() || (selected > 0 && selected_moved > 0.5 * selected) ||
+      (at_seeds > 0 && at_seeds_moved > 0.5 * at_seeds))
+    return 0;
+  // Merge into `neutral`, keeping it ascending.
+  ViewVotes merged;
+  size_t a = 0, b = 0;
+  while (a < neutral.index.size() || b < moved.index.size()) {
+    const bool take_a = b >= moved.index.size() || (a < neutral.index.size() && neutral.index[a] < moved.index[b]);
+    ViewVotes& src = take_a ? neutral : moved;
+    size_t& i = take_a ? a : b;
+    merged.index.push_back(src.index[i]);
+    merged.weight.push_back(src.weight[i]);
+    ++i;
+  }
+  neutral = std::move(merged);
+  positive = std::move(kept);
+  return moved.index.size();
+}
+
+}  // namespace isegman::segment

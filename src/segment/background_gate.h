@@ -1,0 +1,68 @@
+// Background seen through an object's gaps at nearly the object's depth: the floor inside a
+// ring lying on it, a wall a few centimetres behind a plant's back leaves. SAM fills such
+// gaps, and the depth layers (depth_layers.h) cannot cut them off because no empty depth
+// range separates the background from the object there. What gives them away is that they
+// continue the surface around the mask: the floor inside the ring lies on the plane of the
+// floor outside it. Per mask pixel, the depth the surroundings' surface would have there is
+// interpolated from the pixels just outside the mask; a Gaussian whose centre lies on or
+// behind that surface is background for this view and its vote becomes neutral (the views
+// where it is not seen through a gap judge it).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/image.h"
+#include "core/scene.h"
+#include "segment/votes.h"
+
+namespace isegman::segment {
+
+struct BackgroundOptions {
+  int skip = 2;               // pixels of the mask's outside border skipped (their depth blends both sides)
+  int extent = 4;             // a sample's surface must go on smoothly for twice this many pixels further out
+  int max_span = 0;           // longest line through the mask interpolated, pixels (0: the image's larger side)
+  int min_directions = 2;     // of the four lines (row, column, diagonals), this many must give an estimate
+  double agreement = 0.01;    // ... agreeing within this relative inverse depth
+  double tolerance = 0.01;    // a Gaussian this close (relative inverse depth) to the surface counts as on it
+  // A flat Gaussian counts as lying in the surface only when its normal is within about 35
+  // degrees of the surface's (|cos| >= this); 0: depth alone decides.
+  double min_alignment = 0.8;
+  double seed_radius = 3;     // pixels around a click whose Gaussians are the target
+  double occluder_margin = 0.03;  // outside pixels nearer than the target's near depth less this share are occluders
+};
+
+// The camera depth below which `share` of the votes' weight lies: the target's near side in
+// the view (the background's samples must lie beyond it).
+double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVotes& votes, double share);
+
+// The surroundings' inverse depth per pixel of mask > 0.5, 0 where there is no estimate.
+// Along the row, the column and both diagonals through the pixel, the nearest usable pixels
+// outside the mask on both sides (rendered: alpha > 0.5, `skip` pixels past the border, not
+// nearer than `near_limit`, and at the same depth `extent` pixels further out) are interpolated linearly in inverse depth, which is exact
+// for a plane; the estimate is the mean over the lines when at least min_directions of them
+// give one and they agree.
+Image background_inverse_depth(const Image& mask, const Image& depth, const Image& alpha, double near_limit,
+                               const BackgroundOptions& options = {});
+
+// What is known of the target in the view: the clicked pixels and the current selection
+// (null before the first vote).
+struct BackgroundTarget {
+  struct Seed {
+    double x = 0, y = 0;  // continuous pixel coordinates (core/click.h)
+  };
+  std::vector<Seed> seeds;
+  const std::vector<bool>* selection = nullptr;
+};
+
+// Moves from `positive` to `neutral` (kept ascending) the Gaussians whose centre projects
+// onto a pixel with a background estimate and lies on or behind that surface. Nothing is
+// moved when that would take the target itself: most of the weight of the Gaussians centred
+// within seed_radius of a click (the object is not told from the surroundings by depth
+// here), or more than half of the selection's weight in the mask. Returns the number moved.
+size_t gate_background(const GaussianScene& scene, const Camera& camera, const Image& background,
+                       const BackgroundTarget& target, ViewVotes& positive, ViewVotes& neutral,
+                       const BackgroundOptions& options = {});
+
+}  // namespace isegman::segment

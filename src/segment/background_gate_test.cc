@@ -1,0 +1,162 @@
+#include "segment/background_gate.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace isegman::segment {
+namespace {
+
+// A 64x64 view whose background is the plane with inverse depth `inv(x, y)` (affine in the
+// pixel coordinates: any plane is), a mask square [24, 40)^2 and, inside it, an object at depth 3.
+struct PlaneView {
+  Image mask{64, 64, 1}, depth{64, 64, 1}, alpha{64, 64, 1, 1.f};
+  static double inv(int x, int y) { return 0.2 + 0.0004 * x - 0.0003 * y; }
+  PlaneView() {
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x) {
+        const bool in = x >= 24 && x < 40 && y >= 24 && y < 40;
+        mask.at(x, y) = in ? 1.f : 0.f;
+        depth.at(x, y) = in ? 3.f : float(1.0 / inv(x, y));
+      }
+  }
+};
+
+TEST(BackgroundGate, InterpolatesThePlaneAroundTheMaskExactly) {
+  PlaneView v;
+  const Image bg = background_inverse_depth(v.mask, v.depth, v.alpha, 2.9);
+  int estimated = 0;
+  double worst = 0;
+  for (int y = 24; y < 40; ++y)
+    for (int x = 24; x < 40; ++x) {
+      if (bg.at(x, y) <= 0) continue;
+      ++estimated;
+      worst = std::max(worst, std::abs(bg.at(x, y) - PlaneView::inv(x, y)) / PlaneView::inv(x, y));
+    }
+  std::printf("[ plane ] %d of 256 mask pixels estimated, worst relative error %.2g\n", estimated, worst);
+  EXPECT_EQ(estimated, 256);
+  EXPECT_LT(worst, 1e-5);
+  for (int x = 0; x < 64; ++x) EXPECT_EQ(bg.at(x, 10), 0.f);  // nothing outside the mask
+  // Background nearer than the limit (an occluder around the object) is no sample.
+  const Image none = background_inverse_depth(v.mask, v.depth, v.alpha, 6.0);
+  for (float b : none.data) EXPECT_EQ(b, 0.f);
+}
+
+TEST(BackgroundGate, AThinBarInFrontOfThePlaneIsNoSurface) {
+  // Rails 3 px high just above and below the mask, nearer than the plane (like the rails
+  // of a screen whose one slat SAM masked): lines that end on them must not pull the
+  // estimate forward. Estimates either do not exist or lie on the plane.
+  PlaneView v;
+  for (int y : {20, 21, 22, 41, 42, 43})
+    for (int x = 0; x < 64; ++x) v.depth.at(x, y) = 4.0f;
+  // One direction is enough here, so the rows (which see only the plane) give estimates.
+  BackgroundOptions one;
+  one.min_directions = 1;
+  const Image bg = background_inverse_depth(v.mask, v.depth, v.alpha, 2.9, one);
+  int estimated = 0;
+  for (int y = 24; y < 40; ++y)
+    for (int x = 24; x < 40; ++x) {
+      if (bg.at(x, y) <= 0) continue;
+      ++estimated;
+      EXPECT_NEAR(bg.at(x, y), PlaneView::inv(x, y), 1e-5 * PlaneView::inv(x, y)) << x << "," << y;
+    }
+  std::printf("[ rails ] %d of 256 mask pixels estimated, all on the plane\n", estimated);
+  EXPECT_EQ(estimated, 256);
+  // Without the check that a sample's surface goes on, the columns end on the rails and
+  // disagree with the rows: no pixel keeps an estimate on the plane.
+  one.extent = 0;
+  const Image unchecked = background_inverse_depth(v.mask, v.depth, v.alpha, 2.9, one);
+  int on_plane = 0;
+  for (int y = 24; y < 40; ++y)
+    for (int x = 24; x < 40; ++x)
+      on_plane += std::abs(unchecked.at(x, y) - PlaneView::inv(x, y)) < 1e-5 * PlaneView::inv(x, y);
+  EXPECT_EQ(on_plane, 0);
+}
+
+// Gaussians seen in the middle of the mask of a camera at the origin looking along +z, in
+// front of a wall at z = 5: scale (sx, sy, sz), no rotation.
+struct GateScene {
+  GaussianScene scene;
+  Camera cam = Camera::look_at({0, 0, 0}, {0, 0, 1}, {0, -1, 0}, 64, 64, 60);
+  Image mask{64, 64, 1}, depth{64, 64, 1, 5.f}, alpha{64, 64, 1, 1.f};
+  ViewVotes positive;
+  GateScene() {
+    for (int y = 16; y < 48; ++y)
+      for (int x = 16; x < 48; ++x) mask.at(x, y) = 1.f;
+  }
+  void add(double x, double y, double z, double sx, double sy, double sz) {
+    const uint32_t g = uint32_t(scene.size());
+    scene.positions.insert(scene.positions.end(), {float(x), float(y), float(z)});
+    scene.scales.insert(scene.scales.end(), {std::log(float(sx)), std::log(float(sy)), std::log(float(sz))});
+    scene.rotations.insert(scene.rotations.end(), {1, 0, 0, 0});
+    scene.opacity.push_back(0);
+    positive.index.push_back(g);
+    positive.weight.push_back(int64_t(1) << 24);
+  }
+};
+
+TEST(BackgroundGate, OnlyGaussiansLyingInTheSurroundingSurfaceBecomeNeutral) {
+  GateScene s;
+  s.add(-0.2, -0.2, 5.0, 0.05, 0.05, 0.002);  // 0: a flat piece of the wall seen through a gap
+  s.add(0.2, -0.2, 4.0, 0.05, 0.05, 0.002);   // 1: the object, 20 % nearer
+  s.add(-0.2, 0.2, 5.0, 0.002, 0.05, 0.05);   // 2: standing across the wall (an object's side touching it)
+  s.add(0.2, 0.2, 5.05, 0.03, 0.03, 0.03);    // 3: a round Gaussian just behind the wall's surface
+  ASSERT_EQ(s.scene.size(), 4u);
+  const Image bg = background_inverse_depth(s.mask, s.depth, s.alpha, 3.8);
+  ViewVotes positive = s.positive, neutral;
+  EXPECT_EQ(gate_background(s.scene, s.cam, bg, {}, positive, neutral), 2u);
+  EXPECT_EQ(positive.index, (std::vector<uint32_t>{1, 2}));
+  EXPECT_EQ(neutral.index, (std::vector<uint32_t>{0, 3}));
+  EXPECT_EQ(neutral.weight[0], int64_t(1) << 24);
+  // Into an existing neutral list, kept ascending.
+  ViewVotes p2 = s.positive, n2;
+  n2.index = {1};
+  n2.weight = {5};
+  p2.index = {0, 2, 3};
+  p2.weight = {7, 8, 9};
+  EXPECT_EQ(gate_background(s.scene, s.cam, bg, {}, p2, n2), 2u);
+  EXPECT_EQ(n2.index, (std::vector<uint32_t>{0, 1, 3}));
+  EXPECT_EQ(n2.weight, (std::vector<int64_t>{7, 5, 9}));
+}
+
+TEST(BackgroundGate, NeverTakesTheClickedSurfaceOrMostOfTheSelection) {
+  GateScene s;
+  s.add(-0.2, -0.2, 5.0, 0.05, 0.05, 0.002);
+  s.add(0.2, -0.2, 4.0, 0.05, 0.05, 0.002);
+  const Image bg = background_inverse_depth(s.mask, s.depth, s.alpha, 3.8);
+  double u, v;
+  ASSERT_TRUE(s.cam.project({-0.2, -0.2, 5.0}, u, v));
+  // A click on the Gaussian that lies in the wall: the object is not told from the wall here.
+  BackgroundTarget clicked;
+  clicked.seeds.push_back({u, v});
+  ViewVotes positive = s.positive, neutral;
+  EXPECT_EQ(gate_background(s.scene, s.cam, bg, clicked, positive, neutral), 0u);
+  EXPECT_EQ(positive.index.size(), 2u);
+  EXPECT_TRUE(neutral.index.empty());
+  // The current selection is that Gaussian: the same.
+  const std::vector<bool> selection = {true, false};
+  BackgroundTarget selected;
+  selected.selection = &selection;
+  EXPECT_EQ(gate_background(s.scene, s.cam, bg, selected, positive, neutral), 0u);
+  // A click on the nearer Gaussian: the wall's becomes neutral.
+  ASSERT_TRUE(s.cam.project({0.2, -0.2, 4.0}, u, v));
+  BackgroundTarget other;
+  other.seeds.push_back({u, v});
+  EXPECT_EQ(gate_background(s.scene, s.cam, bg, other, positive, neutral), 1u);
+  EXPECT_EQ(neutral.index, (std::vector<uint32_t>{0}));
+}
+
+TEST(BackgroundGate, NearDepthIsTheWeightedNearSide) {
+  GateScene s;
+  s.add(0, 0, 2.0, 0.01, 0.01, 0.01);
+  s.add(0, 0, 3.0, 0.01, 0.01, 0.01);
+  s.add(0, 0, 4.0, 0.01, 0.01, 0.01);
+  s.positive.weight = {1, 8, 1};
+  EXPECT_NEAR(near_depth(s.scene, s.cam, s.positive, 0.05), 2.0, 1e-6);
+  EXPECT_NEAR(near_depth(s.scene, s.cam, s.positive, 0.5), 3.0, 1e-6);
+  EXPECT_EQ(near_depth(s.scene, s.cam, ViewVotes{}, 0.05), 0.0);
+}
+
+}  // namespace
+}  // namespace isegman::segment
