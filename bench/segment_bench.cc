@@ -7,8 +7,9 @@
 // resident memory of the views and peak RSS. The scene is written as a PLY and loaded
 // back the way every command loads one (io/gaussian_file.h): load time, and the load's
 // peak memory against the loaded scene's size. Peak RSS counts from that load on, split
-// into the part up to the first click (views built, one round) and the later clicks. A hash of the selection and of the
-// vote sums after a click lets two builds be compared for identical results.
+// into the part up to the first click (views built, one round) and the later clicks. A
+// hash of the selection and of the vote sums after a click lets two builds be compared
+// for identical results.
 // `--benchmark_filter=LargeScene/6000000` runs one size.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
