@@ -12,7 +12,6 @@
 
 #include "core/error.h"
 #include "io/image_io.h"
-#include "models/tensor_memory.h"
 #include "segment/view_selection.h"
 
 namespace isegman::segment {
@@ -86,10 +85,6 @@ SegmentView build_view(const GaussianScene& scene, const Camera& camera, int cam
   }
   v.all_votes = total_votes(v.frame, opt.threads);
   v.embedding = sam.encode_cached(v.rgb, opt.cache_dir, timings);
-  // The blocks the SAM engine keeps for the encoder's activations (~0.4 GB) would stay
-  // resident through the next view's render and sorting, and after the last view for the
-  // whole session; the next encode maps them again (huge pages: a few ms).
-  models::trim_tensor_memory_pool();
   v.features = v.embedding.feature_map();
   return v;
 }
