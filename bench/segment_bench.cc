@@ -6,12 +6,18 @@
 // (SAM encoding reported apart; it runs for real, with a fresh cache), time per click,
 // resident memory of the views and peak RSS. The scene is written as a PLY and loaded
 // back the way every command loads one (io/gaussian_file.h): load time, and the load's
-// peak memory against the loaded scene's size. Peak RSS counts from that load on.
+// peak memory against the loaded scene's size. Peak RSS counts from that load on, split
+// into the part up to the first click (views built, one round) and the later clicks. A
+// hash of the selection and of the vote sums after a click lets two builds be compared
+// for identical results.
+// `--benchmark_filter=LargeScene/6000000` runs one size.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <cstdio>
@@ -135,6 +141,30 @@ double scene_mb(const GaussianScene& g) {
   return double(bytes) / (1024.0 * 1024.0);
 }
 
+// FNV-1a over the selection flags and the exact vote sums: equal hashes, equal results.
+uint64_t result_hash(const segment::Session& s) {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&](uint64_t v) {
+    for (int b = 0; b < 8; ++b) {
+      h ^= (v >> (8 * b)) & 0xff;
+      h *= 1099511628211ull;
+    }
+  };
+  const std::vector<bool>& sel = s.selection();
+  for (size_t i = 0; i < sel.size(); ++i)
+    if (sel[i]) mix(i);
+  mix(sel.size());
+  const segment::VoteAccumulator& v = s.votes();
+  for (size_t i = 0; i < v.size(); ++i)
+    if (v.total()[i] || v.positive()[i] || v.centred()[i]) {
+      mix(i);
+      mix(uint64_t(v.positive()[i]));
+      mix(uint64_t(v.total()[i]));
+      mix(uint64_t(v.centred()[i]));
+    }
+  return h;
+}
+
 double current_rss_mb() {
   std::ifstream f("/proc/self/statm");
   long pages = 0, resident = 0;
@@ -182,17 +212,22 @@ void BM_LargeScene(benchmark::State& state) {
   segment::PipelineTimings t;
   auto session = segment::segment_from_prompts(demo.bundle, cam, {click}, sam, segment::SessionOptions(), vo, "auto", &t);
   const double rss_views = current_rss_mb();
+  const double peak_first_mb = peak_from_load ? status_mb("VmHWM:") : peak_rss_mb();
+  const uint64_t first_hash = result_hash(*session);
+  const bool peak_clicks_apart = peak_from_load && reset_peak_rss();
   const int view = segment::view_of_camera(*session, cam);
   session->undo();
   segment::RoundReport last;
   double ms_clicks = 0;
   int n = 0;
+  uint64_t hash = 0;
   for (auto _ : state) {
     auto tc = clock::now();
     last = session->click(view, click);
     ms_clicks += ms_since(tc);
     ++n;
     state.PauseTiming();
+    hash = result_hash(*session);
     session->undo();
     state.ResumeTiming();
   }
@@ -207,21 +242,27 @@ void BM_LargeScene(benchmark::State& state) {
   state.counters["sam_embed_ms"] = t.ms_embedding;
   state.counters["click_ms"] = n ? ms_clicks / n : 0;
   state.counters["views_rss_mb"] = rss_views - rss_scene;
-  const double peak_mb = peak_from_load ? status_mb("VmHWM:") : peak_rss_mb();
+  const double peak_clicks_mb = peak_clicks_apart ? status_mb("VmHWM:") : 0;
+  const double peak_mb = peak_from_load ? std::max(peak_first_mb, peak_clicks_apart ? peak_clicks_mb : status_mb("VmHWM:"))
+                                        : peak_rss_mb();
   state.counters["load_ms"] = ms_load;
   state.counters["load_peak_over_scene"] = load_peak_mb / loaded_mb;
   state.counters["peak_rss_mb"] = peak_mb;
+  state.counters["peak_first_mb"] = peak_first_mb;
+  state.counters["peak_clicks_mb"] = peak_clicks_mb;
   std::printf(
       "[large] %zu Gaussians, %zu cameras at %dx%d, %d auto views (real SAM encoder, fresh cache):\n"
       "  PLY load %.0f ms, its peak %.0f MB for a %.0f MB scene (%.2fx);\n"
       "  scene generation %.0f ms; view choice %.2f ms; building the views %.0f ms without SAM + SAM "
       "encoding %.0f ms;\n  per click %.0f ms (propagation %.1f, SAM %.0f, voting %.0f; %zu selected; %d/%d views "
-      "accepted);\n  views' resident memory %.0f MB (%.0f MB a view), peak RSS %.0f MB%s\n",
+      "accepted);\n  views' resident memory %.0f MB (%.0f MB a view), peak RSS %.0f MB%s (up to the first click %.0f MB, "
+      "later clicks %.0f MB);\n  result hash: first click %016llx, later clicks %016llx\n",
       demo.bundle.gaussians.size(), demo.bundle.cameras.size(), opt.width, opt.height, t.views, ms_load,
       load_peak_mb, loaded_mb, load_peak_mb / loaded_mb, ms_scene,
       t.ms_selection, views_ms_no_sam, t.ms_embedding, n ? ms_clicks / n : 0, last.ms_propagation, last.ms_sam,
       last.ms_voting, last.selected, last.accepted, t.views, rss_views - rss_scene,
-      (rss_views - rss_scene) / std::max(1, t.views), peak_mb, peak_from_load ? " (from the load on)" : "");
+      (rss_views - rss_scene) / std::max(1, t.views), peak_mb, peak_from_load ? " (from the load on)" : "",
+      peak_first_mb, peak_clicks_mb, static_cast<unsigned long long>(first_hash), static_cast<unsigned long long>(hash));
   std::fflush(stdout);
   fs::remove_all(vo.cache_dir);
 }

@@ -12,7 +12,7 @@ namespace {
 constexpr uint32_t kLeafSize = 16;
 }  // namespace
 
-CentreIndex::CentreIndex(const GaussianScene& scene) : pos_(scene.positions) {
+CentreIndex::CentreIndex(const GaussianScene& scene) : pos_(scene.positions.data()) {
   if (scene.size() >= (size_t(1) << 32)) throw Error("neighbour index", "too many Gaussians");
   order_.resize(scene.size());
   for (uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;

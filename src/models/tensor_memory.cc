@@ -45,6 +45,21 @@ class PooledCpuAllocator final : public c10::Allocator {
 
   c10::DeleterFnPtr raw_deleter() const override { return &PooledCpuAllocator::release; }
 
+  size_t trim() const {
+    std::multimap<size_t, void*> blocks;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      blocks.swap(free_);
+      cached_ = 0;
+    }
+    size_t bytes = 0;
+    for (const auto& [size, p] : blocks) {
+      munmap(p, size);
+      bytes += size;
+    }
+    return bytes;
+  }
+
   size_t cached_bytes() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return cached_;
@@ -126,6 +141,8 @@ void use_tensor_memory_pool() {
     c10::SetCPUAllocator(pool, /*priority=*/1);
   });
 }
+
+size_t trim_tensor_memory_pool() { return pool ? pool->trim() : 0; }
 
 size_t tensor_memory_pool_cached_bytes() { return pool ? pool->cached_bytes() : 0; }
 

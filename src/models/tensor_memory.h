@@ -15,6 +15,12 @@ namespace isegman::models {
 // allocator in place (for comparisons).
 void use_tensor_memory_pool();
 
+// Gives every block the pool keeps for reuse back to the system and returns their bytes.
+// For the end of an encoding burst (a session's views are encoded): the blocks sized for
+// the encoder's activations would otherwise stay resident for the rest of the process.
+// Later runs map afresh what they need (the pool fills again).
+size_t trim_tensor_memory_pool();
+
 // Bytes the pool currently keeps for reuse (0 when it is not installed).
 size_t tensor_memory_pool_cached_bytes();
 // Fresh mappings the pool has made so far (each costs page faults on first touch).

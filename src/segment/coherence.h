@@ -23,8 +23,12 @@ struct CoherenceOptions {
 // The selection: share > tau (and enough weight), plus the undecided Gaussians (share in
 // (tau_low, tau]) whose observed k nearest Gaussians (`index`, built over `scene`) are
 // mostly selected by share > tau (or by the centre rule, votes.h).
+// `strong` (optional): votes.select(tau, min_total, centre), when already known.
+// `candidates` (optional): Gaussians outside which every positive vote sum is 0; with
+// tau_low >= 0 only they can be undecided, so only they are visited (not all N).
 std::vector<bool> coherent_selection(const VoteAccumulator& votes, const GaussianScene& scene, const CentreIndex& index,
                                      double tau, double min_total, const CoherenceOptions& options = {},
-                                     const CentreRule& centre = {});
+                                     const CentreRule& centre = {}, const std::vector<bool>* strong = nullptr,
+                                     const std::vector<uint32_t>* candidates = nullptr);
 
 }  // namespace isegman::segment

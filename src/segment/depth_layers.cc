@@ -22,7 +22,8 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
   const double step = std::log1p(o.bin);
   const int bins = std::max(1, int(std::ceil((std::log(hi) - std::log(lo)) / step)) + 1);
   std::vector<double> hist(size_t(bins), 0.0);
-  auto bin_of = [&](double z) { return std::clamp(int((std::log(z) - std::log(lo)) / step), 0, bins - 1); };
+  const double log_lo = std::log(lo);  // once, not per sample (the same value)
+  auto bin_of = [&](double z) { return std::clamp(int((std::log(z) - log_lo) / step), 0, bins - 1); };
   for (size_t i = 0; i < depth.size(); ++i)
     if (depth[i] > 0 && weight[i] > 0) hist[size_t(bin_of(depth[i]))] += weight[i];
   // Bins inside the depth extent of a Gaussian that matters are not empty either.

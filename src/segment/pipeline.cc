@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "models/tensor_memory.h"
 #include "segment/view_selection.h"
 
 namespace isegman::segment {
@@ -60,6 +61,10 @@ std::unique_ptr<Session> segment_from_prompts(const SceneBundle& b, int camera_i
     std::vector<int> chosen = sample_views(b.cameras, views_spec, camera_index);
     views = build_views(b, chosen, *sam, vo, progress, &t.ms_embedding);
   }
+  // The views are encoded and clicks only decode: the blocks the SAM engine keeps for the
+  // encoder's activations (~0.4 GB) would stay resident for the whole session. (Not after
+  // every view: encoding with a cold pool was about twice as slow.)
+  models::trim_tensor_memory_pool();
   t.views = int(views.size());
   t.ms_views = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   auto session = std::make_unique<Session>(b.gaussians, std::move(views), std::move(sam), so);

@@ -152,10 +152,12 @@ Agreement agreement(const Image& mask, const Image& coverage) {
 
 // Tiles the selection can reach in a view: the bounding box of its Gaussians' 3-sigma
 // extents (largest axis) around their projected centres. A coverage render needs no others.
-std::vector<uint8_t> selection_tiles(const GaussianScene& scene, const SegmentView& view, const std::vector<float>& values) {
+// `members`: a superset of the Gaussians with values > 0 (the others are not visited).
+std::vector<uint8_t> selection_tiles(const GaussianScene& scene, const SegmentView& view, const std::vector<float>& values,
+                                     const std::vector<uint32_t>& members) {
   const Camera& c = view.camera;
   double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30;
-  for (size_t i = 0; i < values.size(); ++i) {
+  for (const uint32_t i : members) {
     if (values[i] <= 0) continue;
     const Vec3 p = c.world_to_camera({scene.positions[3 * i], scene.positions[3 * i + 1], scene.positions[3 * i + 2]});
     if (p.z <= 0.2) continue;  // the rasteriser's near plane culls it
@@ -178,19 +180,13 @@ std::vector<uint8_t> selection_tiles(const GaussianScene& scene, const SegmentVi
 }
 
 Image selection_values_coverage(const GaussianScene& scene, const SegmentView& view, const std::vector<float>& values,
-                                int threads) {
+                                const std::vector<uint32_t>& members, int threads) {
   RenderSettings rs;
   rs.color = false;
   rs.depth = false;
   rs.threads = threads;
-  const std::vector<uint8_t> tiles = selection_tiles(scene, view, values);
+  const std::vector<uint8_t> tiles = selection_tiles(scene, view, values, members);
   return rasterize(view.frame, rs, &values, nullptr, &tiles).value;
-}
-
-std::vector<float> as_values(const std::vector<bool>& sel) {
-  std::vector<float> v(sel.size());
-  for (size_t i = 0; i < v.size(); ++i) v[i] = sel[i] ? 1.f : 0.f;
-  return v;
 }
 
 // The candidate most consistent with the rendered selection (IoU); SAM's own choice
@@ -392,6 +388,15 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // A round is a function of the clicks: votes start empty and every view is re-judged.
   VoteAccumulator& acc = next.votes;
   acc = VoteAccumulator(scene_.size());
+  // The selection of the votes so far, decided over the Gaussians with positive votes
+  // only (live_selection.h) and only after a vote changed it.
+  LiveSelection& live = live_;
+  live.reset(scene_.size(), {o.tau, o.min_total_weight, o.centre_rule}, &excluded_);
+  bool undecided = false;
+  auto decide = [&]() {
+    if (undecided) live.decide(acc);
+    undecided = false;
+  };
   bool first = true;
 
   // Votes of one view's mask, gated to the target's depth layer.
@@ -434,6 +439,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
     if (o.centre_rule.enabled)
       centred = centred_votes(scene_, view.camera, mask, view.depth, vs.positive, view.all_votes);
     acc.add(vs.positive, view.all_votes, +1, &vs.neutral, &centred);
+    live.add_support(vs.positive.index);
+    undecided = true;
     vs.status = ViewStatus::Accepted;
     ++rep.accepted;
   };
@@ -445,16 +452,16 @@ RoundReport Session::run_round(State& next, const State& prev) {
     vs.sam = results[k];
     vs.sam_negative = negatives[k];
     const bool inspect = !first && o.inspection;
-    std::vector<bool> current;
+    if (!first) decide();
+    const std::vector<bool>& current = live.eligible();
     Image coverage;
     ViewVotes raw;
     bool have_raw = false;
     const bool several = r.candidates.size() > 1 && o.choose_candidate;
     if (inspect || (!first && several)) {
-      current = eligible(acc.select(o.tau, o.min_total_weight, o.centre_rule));
-      const std::vector<float> values = as_values(current);
+      const std::vector<float>& values = live.values();
       if (several) {  // the coverage decides the candidate, then the candidate's votes
-        coverage = selection_values_coverage(scene_, views_[k], values, o.threads);
+        coverage = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
         take_candidate(vs, r, choose(r, &coverage, o.min_coverage_pixels));
       } else {  // one pass over the mask's tiles gives the selection's coverage and the mask's votes
         take_candidate(vs, r, r.mask_index);
@@ -506,15 +513,16 @@ RoundReport Session::run_round(State& next, const State& prev) {
 
   // 4. Views no click reached: prompt SAM from the selection rendered in them.
   for (int round = 0; round < o.selection_prompt_rounds && !first; ++round) {
-    const std::vector<bool> current = eligible(acc.select(o.tau, o.min_total_weight, o.centre_rule));
-    const std::vector<float> values = as_values(current);
+    decide();  // the round's votes are judged against the selection it starts from
+    const std::vector<bool>& current = live.eligible();
+    const std::vector<float>& values = live.values();
     std::vector<size_t> which;
     std::vector<std::vector<models::Click>> prompts;
     std::vector<Image> coverages;
     for (size_t k : order) {
       ViewState& vs = fresh[k];
       if (vs.status != ViewStatus::NoClicks && !(vs.from_selection && vs.status == ViewStatus::NoOverlap)) continue;
-      Image cov = selection_values_coverage(scene_, views_[k], values, o.threads);
+      Image cov = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
       int covered = 0;
       for (float v : cov.data) covered += v > 0.5f;
       std::vector<models::Click> prompt;
@@ -554,12 +562,13 @@ RoundReport Session::run_round(State& next, const State& prev) {
   for (const ViewState& vs : fresh)
     if (vs.from_selection && vs.status == ViewStatus::NoOverlap) ++rep.dropped;
   next.views = std::move(fresh);
+  decide();
   if (o.coherence) {
     if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
     next.selection = eligible(coherent_selection(acc, scene_, *neighbours_, o.tau, o.min_total_weight,
-                                                 o.coherence_options, o.centre_rule));
+                                                 o.coherence_options, o.centre_rule, &live.strong(), &live.support()));
   } else {
-    next.selection = eligible(acc.select(o.tau, o.min_total_weight, o.centre_rule));
+    next.selection = live.eligible();
   }
   rep.selected = size_t(std::count(next.selection.begin(), next.selection.end(), true));
   rep.views_segmented = segmented;

@@ -11,6 +11,7 @@
 #include "segment/background_gate.h"
 #include "segment/coherence.h"
 #include "segment/depth_layers.h"
+#include "segment/live_selection.h"
 #include "segment/propagation.h"
 #include "segment/see_through.h"
 #include "segment/views.h"
@@ -156,6 +157,7 @@ class Session {
   std::vector<std::pair<std::pair<int, float>, int>> peeled_;  // (view, cut depth) -> peeled view
   std::unique_ptr<CentreIndex> neighbours_;  // built at the first decision that needs it
   std::vector<bool> excluded_;
+  LiveSelection live_;  // the selection while a round votes; its buffers serve every round
 };
 
 }  // namespace isegman::segment

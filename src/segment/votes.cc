@@ -51,13 +51,8 @@ void VoteAccumulator::add(const ViewVotes& positive, const ViewVotes& total, int
 
 std::vector<bool> VoteAccumulator::select(double tau, double min_total, const CentreRule& centre) const {
   std::vector<bool> sel(total_.size(), false);
-  const int64_t min_fixed = int64_t(std::ceil(min_total * kVoteScale));
-  for (size_t j = 0; j < total_.size(); ++j) {
-    if (!(total_[j] > 0 && total_[j] >= min_fixed)) continue;
-    const double a = double(total_[j]), p = double(positive_[j]);
-    sel[j] = p > tau * a ||
-             (centre.enabled && p > centre.tau_low * a && double(centred_[j]) > centre.min_centred * a);
-  }
+  const int64_t fixed = min_fixed(min_total);
+  for (size_t j = 0; j < total_.size(); ++j) sel[j] = selects(j, tau, fixed, centre);
   return sel;
 }
 

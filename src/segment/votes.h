@@ -5,10 +5,12 @@
 // of thread count and order, and a view's contribution can be removed again bit-exactly.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "core/image.h"
+#include "core/zeroed_array.h"
 #include "render/rasterizer.h"
 #include "render/visibility.h"
 
@@ -44,10 +46,11 @@ struct CentreRule {
   double min_centred = 0.7; // ... when C/A exceeds this (the centre inside the masks of nearly every view)
 };
 
+// Dense sums, one per Gaussian, in zero pages that cost nothing until a view votes there
+// (core/zeroed_array.h): a round starts a fresh accumulator.
 class VoteAccumulator {
  public:
-  explicit VoteAccumulator(size_t gaussians = 0)
-      : positive_(gaussians, 0), total_(gaussians, 0), centred_(gaussians, 0) {}
+  explicit VoteAccumulator(size_t gaussians = 0) : positive_(gaussians), total_(gaussians), centred_(gaussians) {}
   size_t size() const { return total_.size(); }
   // sign = +1 adds a view, -1 removes it again. `neutral` (optional): weights of the
   // view's total that count neither way (depth-gated content of the mask). `centred`
@@ -58,17 +61,24 @@ class VoteAccumulator {
   // their centre evidence C/A exceeds min_centred) and whose total weight A is at least
   // min_total (in pixel-weight units).
   std::vector<bool> select(double tau, double min_total, const CentreRule& centre = {}) const;
+  // The same decision for one Gaussian j, with min_fixed = min_fixed(min_total).
+  bool selects(size_t j, double tau, int64_t min_fixed, const CentreRule& centre = {}) const {
+    if (!(total_[j] > 0 && total_[j] >= min_fixed)) return false;
+    const double a = double(total_[j]), p = double(positive_[j]);
+    return p > tau * a || (centre.enabled && p > centre.tau_low * a && double(centred_[j]) > centre.min_centred * a);
+  }
+  static int64_t min_fixed(double min_total) { return int64_t(std::ceil(min_total * kVoteScale)); }
   // P/A per Gaussian (0 where A is 0).
   std::vector<float> ratios() const;
-  const std::vector<int64_t>& positive() const { return positive_; }
-  const std::vector<int64_t>& total() const { return total_; }
-  const std::vector<int64_t>& centred() const { return centred_; }
+  const ZeroedArray<int64_t>& positive() const { return positive_; }
+  const ZeroedArray<int64_t>& total() const { return total_; }
+  const ZeroedArray<int64_t>& centred() const { return centred_; }
   bool operator==(const VoteAccumulator& o) const {
     return positive_ == o.positive_ && total_ == o.total_ && centred_ == o.centred_;
   }
 
  private:
-  std::vector<int64_t> positive_, total_, centred_;
+  ZeroedArray<int64_t> positive_, total_, centred_;
 };
 
 // The view totals (from `total`, ascending like `positive`) of the Gaussians of `positive`

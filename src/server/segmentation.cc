@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "io/image_io.h"
+#include "models/tensor_memory.h"
 #include "segment/overlay.h"
 #include "segment/views.h"
 #include "server/app_error.h"
@@ -139,6 +140,8 @@ std::vector<segment::SegmentView> Segmentation::build_views(const SceneBundle& s
     }
     if (progress) progress(int(k + 1), total, line);
   }
+  // Encoded: clicks only decode, so the encoder's cached activation blocks go back.
+  models::trim_tensor_memory_pool();
   return views;
 }
 
