@@ -139,18 +139,32 @@ Image background_inverse_depth(const Image& mask, const Image& depth, const Imag
   const int max_span = o.max_span > 0 ? o.max_span : std::max(w, h) * 2;
   Estimates e{std::vector<float>(npx, 0.f), std::vector<float>(npx, 1e30f), std::vector<float>(npx, -1e30f),
               std::vector<uint8_t>(npx, 0)};
+  // Only the mask's bounding box, widened by the farthest pixel a sample reads, matters:
+  // lines are walked within it (the same result as over the whole image, for less work).
+  int bx0 = w, by0 = h, bx1 = -1, by1 = -1;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (mask.at(x, y) > 0.5f) {
+        bx0 = std::min(bx0, x), by0 = std::min(by0, y);
+        bx1 = std::max(bx1, x), by1 = std::max(by1, y);
+      }
+  if (bx1 < 0) return out;
+  const int reach = 1 + o.skip + 2 * std::max(0, o.extent);
+  const int x0 = std::max(0, bx0 - reach), y0 = std::max(0, by0 - reach);
+  const int x1 = std::min(w - 1, bx1 + reach), y1 = std::min(h - 1, by1 + reach);
   std::vector<uint32_t> line;
   auto walk = [&](int x, int y, int dx, int dy) {
     line.clear();
-    for (; x >= 0 && y >= 0 && x < w && y < h; x += dx, y += dy) line.push_back(uint32_t(y) * uint32_t(w) + uint32_t(x));
+    for (; x >= x0 && y >= y0 && x <= x1 && y <= y1; x += dx, y += dy)
+      line.push_back(uint32_t(y) * uint32_t(w) + uint32_t(x));
     interpolate_line(line, mask, depth, alpha, near_limit, o, max_span, e);
   };
-  for (int y = 0; y < h; ++y) walk(0, y, 1, 0);                           // rows
-  for (int x = 0; x < w; ++x) walk(x, 0, 0, 1);                           // columns
-  for (int y = 0; y < h; ++y) walk(0, y, 1, 1);                           // diagonals
-  for (int x = 1; x < w; ++x) walk(x, 0, 1, 1);
-  for (int y = 0; y < h; ++y) walk(0, y, 1, -1);                          // anti-diagonals
-  for (int x = 1; x < w; ++x) walk(x, h - 1, 1, -1);
+  for (int y = y0; y <= y1; ++y) walk(x0, y, 1, 0);       // rows
+  for (int x = x0; x <= x1; ++x) walk(x, y0, 0, 1);       // columns
+  for (int y = y0; y <= y1; ++y) walk(x0, y, 1, 1);       // diagonals
+  for (int x = x0 + 1; x <= x1; ++x) walk(x, y0, 1, 1);
+  for (int y = y0; y <= y1; ++y) walk(x0, y, 1, -1);      // anti-diagonals
+  for (int x = x0 + 1; x <= x1; ++x) walk(x, y1, 1, -1);
   for (size_t p = 0; p < npx; ++p) {
     if (e.count[p] < o.min_directions) continue;
     const float mean = e.sum[p] / float(e.count[p]);
