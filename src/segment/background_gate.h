@@ -22,7 +22,7 @@ namespace isegman::segment {
 struct BackgroundOptions {
   int skip = 2;               // pixels of the mask's outside border skipped (their depth blends both sides)
   int extent = 4;             // a sample's surface must go on smoothly for twice this many pixels further out
-  int max_span = 0;           // longest line through the mask interpolated, pixels (0: the image's larger side)
+  int max_span = 0;           // longest run across the mask interpolated, pixels (0: no limit)
   int min_directions = 2;     // of the four lines (row, column, diagonals), this many must give an estimate
   double agreement = 0.01;    // ... agreeing within this relative inverse depth
   double tolerance = 0.01;    // a Gaussian this close (relative inverse depth) to the surface counts as on it
