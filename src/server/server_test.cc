@@ -488,8 +488,11 @@ TEST(Jobs, RunInOrderRecordFailuresAndBoundTheQueue) {
     cv.wait(lock, [&] { return release; });
     order.push_back(0);
   });
-  // Wait until the blocker runs, so the queue holds exactly what follows.
-  for (int i = 0; i < 200 && jobs.current().state != "running"; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  // Wait until the blocker has reported from inside its run (the state turns "running"
+  // before its first report), so the queue holds exactly what follows.
+  for (int i = 0; i < 400 && jobs.current().message != "waiting"; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_EQ(jobs.current().state, "running");
   EXPECT_EQ(jobs.current().message, "waiting");
   const uint64_t a = jobs.submit("a", [&](const JobRunner::Report&) { order.push_back(1); });
   const uint64_t b = jobs.submit("fails", [&](const JobRunner::Report&) { throw std::runtime_error("boom"); });
