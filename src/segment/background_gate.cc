@@ -18,19 +18,21 @@ void interpolate_line(const std::vector<uint32_t>& line, const Image& mask, cons
                       double near_limit, const BackgroundOptions& o, int max_span, Estimates& e) {
   const size_t n = line.size();
   auto inside = [&](size_t i) { return mask.data[line[i]] > 0.5f; };
-  auto inverse = [&](long i) -> float {
+  auto inverse = [&](long i, double limit) -> float {
     if (i < 0 || i >= long(n)) return 0.f;
     const uint32_t p = line[size_t(i)];
     const float z = depth.data[p];
-    return alpha.data[p] > 0.5f && z > 0 && z >= near_limit ? 1.f / z : 0.f;
+    return alpha.data[p] > 0.5f && z > 0 && z >= limit ? 1.f / z : 0.f;
   };
   // The inverse depth of line pixel i as a background sample, or 0 when it cannot serve:
   // the surface must go on smoothly for 2 x `extent` pixels further out (a surface, not a
   // thin bar in front of one: the rail of a screen whose one slat is the mask).
   auto sample = [&](size_t i, long outward) -> float {
-    const float v = inverse(long(i));
+    const float v = inverse(long(i), near_limit);
     if (o.extent <= 0 || v <= 0) return v;
-    const float v1 = inverse(long(i) + outward * o.extent), v2 = inverse(long(i) + 2 * outward * o.extent);
+    // The continuation only shows the surface goes on: a floor seen at a grazing angle comes
+    // nearer than the target's near side a few pixels on, and is still the floor.
+    const float v1 = inverse(long(i) + outward * o.extent, 0), v2 = inverse(long(i) + 2 * outward * o.extent, 0);
     // Smooth: no bend between the three (a plane's inverse depth is linear along the line).
     if (v1 <= 0 || v2 <= 0 || std::abs(v - 2 * v1 + v2) > o.agreement * v) return 0.f;
     return v;
