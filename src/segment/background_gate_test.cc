@@ -43,6 +43,30 @@ TEST(BackgroundGate, InterpolatesThePlaneAroundTheMaskExactly) {
   for (float b : none.data) EXPECT_EQ(b, 0.f);
 }
 
+TEST(BackgroundGate, AFloorComingNearerBelowTheMaskStillCounts) {
+  // A floor seen at a grazing angle: its inverse depth grows fast downwards. The samples
+  // just below the mask lie beyond the near limit, the pixels that show the floor goes on
+  // further down are nearer than it, and they are still the floor.
+  PlaneView v;
+  auto inv = [](int y) { return 0.2 + 0.004 * y; };
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      if (v.mask.at(x, y) < 0.5f) v.depth.at(x, y) = float(1.0 / inv(y));
+  const double limit = 0.99 / inv(42);  // just in front of the sample 2 pixels below the mask
+  BackgroundOptions all_lines;
+  all_lines.min_directions = 4;
+  const Image bg = background_inverse_depth(v.mask, v.depth, v.alpha, limit, all_lines);
+  int estimated = 0;
+  for (int y = 24; y < 40; ++y)
+    for (int x = 24; x < 40; ++x) {
+      if (bg.at(x, y) <= 0) continue;
+      ++estimated;
+      EXPECT_NEAR(bg.at(x, y), inv(y), 1e-5 * inv(y));
+    }
+  std::printf("[ floor ] %d of 256 mask pixels estimated by all four lines\n", estimated);
+  EXPECT_EQ(estimated, 256);
+}
+
 TEST(BackgroundGate, AThinBarInFrontOfThePlaneIsNoSurface) {
   // Rails 3 px high just above and below the mask, nearer than the plane (like the rails
   // of a screen whose one slat SAM masked): lines that end on them must not pull the
