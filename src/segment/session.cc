@@ -399,14 +399,12 @@ RoundReport Session::run_round(State& next, const State& prev) {
   };
   bool first = true;
 
-  // Votes of one view's mask, gated to the target's depth layer.
+  // Votes of one view's mask (`mask`: vs.mask as an image at the view's resolution, built
+  // once per view for inspection, votes, the background gate and the centre evidence),
+  // gated to the target's depth layer.
   // `raw` (optional): the mask's votes already computed in the inspection pass.
-  auto vote = [&](size_t k, ViewState& vs, const std::vector<bool>* selection, ViewVotes* raw) {
+  auto vote = [&](size_t k, ViewState& vs, const std::vector<bool>* selection, ViewVotes* raw, const Image& mask) {
     const SegmentView& view = views_[k];
-    // The mask at the view's resolution, built once for the votes, the background gate and
-    // the centre evidence.
-    Image mask;
-    if (!raw || o.centre_rule.enabled || o.background_gate) mask = mask_image(vs.mask, view.camera.width, view.camera.height);
     if (raw) vs.positive = std::move(*raw);
     else vs.positive = masked_votes(view.frame, mask, o.threads);
     vs.neutral = ViewVotes{};
@@ -454,7 +452,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     const bool inspect = !first && o.inspection;
     if (!first) decide();
     const std::vector<bool>& current = live.eligible();
-    Image coverage;
+    Image coverage, mask;
     ViewVotes raw;
     bool have_raw = false;
     const bool several = r.candidates.size() > 1 && o.choose_candidate;
@@ -466,8 +464,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
       } else {  // one pass over the mask's tiles gives the selection's coverage and the mask's votes
         take_candidate(vs, r, r.mask_index);
         if (vs.mask_pixels > 0) {
-          raw = masked_votes(views_[k].frame, mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height),
-                             o.threads, &values, &coverage);
+          mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
+          raw = masked_votes(views_[k].frame, mask, o.threads, &values, &coverage);
           have_raw = true;
         }
       }
@@ -479,8 +477,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
       ++rep.dropped;
       continue;
     }
+    if (mask.empty()) mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
     if (inspect) {
-      Agreement a = agreement(mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height), coverage);
+      Agreement a = agreement(mask, coverage);
       if (have_raw) {
         // The coverage is only rendered under the mask: the selection's whole extent in
         // this view is its share of the view's all-pixel votes (the same blending weights).
@@ -507,7 +506,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         continue;
       }
     }
-    vote(k, vs, first ? nullptr : &current, have_raw ? &raw : nullptr);
+    vote(k, vs, first ? nullptr : &current, have_raw ? &raw : nullptr, mask);
     first = false;
   }
 
@@ -542,7 +541,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
       vs.from_selection = true;
       vs.sam = results[k];
       take_candidate(vs, *results[k], choose(*results[k], &coverages[i], o.min_coverage_pixels));
-      const Agreement a = agreement(mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height), coverages[i]);
+      const Image mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
+      const Agreement a = agreement(mask, coverages[i]);
       vs.overlap = a.mask_on_selection();
       vs.selection_inside = a.selection_inside();
       vs.iou = a.iou();
@@ -553,7 +553,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         vs.status = ViewStatus::NoOverlap;
         continue;
       }
-      vote(k, vs, &current, nullptr);
+      vote(k, vs, &current, nullptr, mask);
       ++rep.prompted;
       ++accepted;
     }
