@@ -1119,11 +1119,21 @@ struct OnnxGraph::Impl {
   }
 };
 
-OnnxGraph::OnnxGraph(const std::string& path) : impl_(std::make_unique<Impl>()) {
+OnnxGraph::OnnxGraph(const std::string& path, const TapRule& taps) : impl_(std::make_unique<Impl>()) {
   use_tensor_memory_pool();
   c10::InferenceMode guard;
   Impl& m = *impl_;
   m.model = load_onnx(path);
+  if (taps)
+    for (const std::string& name : taps(m.model)) {
+      bool produced = false;
+      for (const Node& n : m.model.nodes)
+        produced = produced || std::find(n.outputs.begin(), n.outputs.end(), name) != n.outputs.end();
+      if (!produced) throw Error(path, "no node produces the value '" + name + "' asked to be returned");
+      bool known = false;
+      for (const auto& v : m.model.outputs) known = known || v.name == name;
+      if (!known) m.model.outputs.push_back(ValueInfo{name, DType::Float32, {}, {}});
+    }
   const auto& reg = registry();
   for (const Node& n : m.model.nodes) {
     if (!(n.domain.empty() || n.domain == "ai.onnx") || !reg.count(n.op_type))

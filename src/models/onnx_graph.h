@@ -5,6 +5,7 @@
 // raises isegman::Error naming the model file and the node.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -27,7 +28,11 @@ int threads_of_this_thread();
 
 class OnnxGraph {
  public:
-  explicit OnnxGraph(const std::string& path);
+  // `taps` (optional) names values computed inside the graph that run() returns beside the
+  // graph outputs (appended to outputs()), chosen by a rule over the loaded model: e.g. a
+  // decoder's scores before the graph keeps only the best. A name no node produces is an error.
+  using TapRule = std::function<std::vector<std::string>(const OnnxModel&)>;
+  explicit OnnxGraph(const std::string& path, const TapRule& taps = nullptr);
   ~OnnxGraph();
   OnnxGraph(const OnnxGraph&) = delete;
   OnnxGraph& operator=(const OnnxGraph&) = delete;

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -300,19 +301,159 @@ SamEmbedding SamEmbedding::load(const std::string& path) {
   return e;
 }
 
+// ---------------------------------------------------------------- candidates of a single-mask decoder
+
+namespace {
+
+// A decoder exported with return_single_mask computes all of SAM's candidate masks and
+// their IoU predictions, then keeps the best (one click: among the multimask outputs 1..3;
+// more prompts: output 0) by an ArgMax and two index-gathers, each of which flattens its
+// source first. The two values flattened after the ArgMax are the candidates (low
+// resolution) and their predictions; a decoder without that pattern gets no taps.
+std::vector<std::string> single_mask_taps(const OnnxModel& model) {
+  size_t argmax = model.nodes.size();
+  int argmaxes = 0;
+  for (size_t i = 0; i < model.nodes.size(); ++i)
+    if (model.nodes[i].op_type == "ArgMax") {
+      argmax = i;
+      ++argmaxes;
+    }
+  if (argmaxes != 1) return {};
+  std::vector<std::string> flattened;
+  for (size_t i = argmax + 1; i < model.nodes.size() && flattened.size() < 2; ++i)
+    if (model.nodes[i].op_type == "Flatten" && !model.nodes[i].inputs.empty()) flattened.push_back(model.nodes[i].inputs[0]);
+  return flattened.size() == 2 ? flattened : std::vector<std::string>{};
+}
+
+// One axis of the export's mask post-processing: bilinear (half-pixel centres) from the
+// low-res grid up to the model's input size, cropped to the resized image, then bilinear
+// to the original image. Both steps are linear, so each output sample is a fixed blend of
+// at most three neighbouring low-res samples: `start` and three weights per output.
+struct AxisTaps {
+  std::vector<int> start;
+  std::vector<std::array<float, 3>> w;
+};
+
+AxisTaps mask_axis_taps(int low, int model_size, int cropped, int out) {
+  auto source = [](int dst, int in, int n_out, int& i0, int& i1, double& frac) {
+    const double src = std::max(0.0, (dst + 0.5) * double(in) / n_out - 0.5);
+    i0 = std::min(int(src), in - 1);
+    i1 = std::min(i0 + 1, in - 1);
+    frac = src - i0;
+  };
+  AxisTaps t;
+  t.start.resize(size_t(out));
+  t.w.resize(size_t(out));
+  for (int o = 0; o < out; ++o) {
+    int j0, j1;
+    double wj;
+    source(o, cropped, out, j0, j1, wj);
+    double acc[4] = {0, 0, 0, 0};
+    int base = -1;
+    for (const auto& [j, wy] : {std::pair<int, double>{j0, 1 - wj}, {j1, wj}}) {
+      int i0, i1;
+      double wi;
+      source(j, low, model_size, i0, i1, wi);
+      if (base < 0) base = i0;
+      acc[i0 - base] += wy * (1 - wi);
+      acc[i1 - base] += wy * wi;
+    }
+    t.start[size_t(o)] = base;
+    for (int k = 0; k < 3; ++k) t.w[size_t(o)][size_t(k)] = float(acc[k]);
+  }
+  return t;
+}
+
+// A low-res candidate (logits, low x low) as a 0/1 mask at the original image size.
+Image candidate_mask(const float* logits, int low, const AxisTaps& tx, const AxisTaps& ty) {
+  const int w = int(tx.start.size()), h = int(ty.start.size());
+  std::vector<float> rows(size_t(low) * w);
+  for (int y = 0; y < low; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float* r = logits + size_t(y) * low + tx.start[size_t(x)];
+      const auto& k = tx.w[size_t(x)];
+      float v = k[0] * r[0];
+      if (k[1] != 0) v += k[1] * r[1];
+      if (k[2] != 0) v += k[2] * r[2];
+      rows[size_t(y) * w + x] = v;
+    }
+  Image m(w, h, 1);
+  for (int y = 0; y < h; ++y) {
+    const auto& k = ty.w[size_t(y)];
+    const float* r0 = rows.data() + size_t(ty.start[size_t(y)]) * w;
+    for (int x = 0; x < w; ++x) {
+      float v = k[0] * r0[x];
+      if (k[1] != 0) v += k[1] * r0[x + w];
+      if (k[2] != 0) v += k[2] * r0[x + 2 * w];
+      m.data[size_t(y) * w + x] = v > 0.f ? 1.f : 0.f;
+    }
+  }
+  return m;
+}
+
+// Replaces a single-mask decoder's one candidate by every candidate SAM weighed (see
+// single_mask_taps), the graph's own mask kept for its choice.
+void candidates_before_selection(const std::vector<std::string>& taps, int input_size,
+                                 const std::map<std::string, HostTensor>& outs, int64_t prompt_points,
+                                 const SamEmbedding& emb, SegmentResult& r) {
+  const auto m = outs.find(taps[0]), p = outs.find(taps[1]);
+  if (m == outs.end() || p == outs.end()) return;
+  const HostTensor& masks = m->second;
+  if (masks.dtype != DType::Float32 || masks.shape.size() != 4 || masks.shape[0] != 1 || masks.shape[2] != masks.shape[3] ||
+      masks.shape[2] != r.low_res_size)
+    return;
+  const int64_t k = masks.shape[1];
+  const std::vector<float> pred = as_floats(p->second, "candidate IoU predictions");
+  if (k < 2 || int64_t(pred.size()) != k) return;
+  // The export's rule: with one point (plus the padding point) the multimask outputs 1..k-1
+  // compete, with more prompt points output 0 alone is SAM's answer.
+  std::vector<int64_t> group;
+  if (prompt_points <= 2)
+    for (int64_t c = 1; c < k; ++c) group.push_back(c);
+  else
+    group.push_back(0);
+  const int low = int(masks.shape[2]);
+  const AxisTaps tx = mask_axis_taps(low, input_size, emb.resized_width, emb.image_width);
+  const AxisTaps ty = mask_axis_taps(low, input_size, emb.resized_height, emb.image_height);
+  const size_t plane = size_t(low) * low;
+  const float* all = masks.data<float>();
+  SegmentResult c;
+  c.mask_index = 0;
+  for (size_t i = 0; i < group.size(); ++i) {
+    const float* logits = all + size_t(group[i]) * plane;
+    c.candidates.push_back(candidate_mask(logits, low, tx, ty));
+    c.candidate_scores.push_back(pred[size_t(group[i])]);
+    c.candidate_low_res.emplace_back(logits, logits + plane);
+    if (pred[size_t(group[i])] > pred[size_t(group[c.mask_index])]) c.mask_index = int(i);
+  }
+  // The graph's own mask for its choice (the same upsampling, computed by the graph).
+  if (c.candidate_low_res[size_t(c.mask_index)] != r.low_res_logits) return;  // not the pattern assumed
+  c.candidates[size_t(c.mask_index)] = r.mask;
+  r.mask_index = c.mask_index;
+  r.candidates = std::move(c.candidates);
+  r.candidate_scores = std::move(c.candidate_scores);
+  r.candidate_low_res = std::move(c.candidate_low_res);
+}
+
+}  // namespace
+
 // ---------------------------------------------------------------- model
 
 struct SamModel::Impl {
   std::unique_ptr<OnnxGraph> encoder, decoder;
   std::string model_id;
   int input_size = 1024;
+  std::vector<std::string> taps;  // a single-mask decoder's candidates and their predictions
 };
 
 SamModel::SamModel(const std::string& encoder_onnx, const std::string& decoder_onnx, int threads)
     : impl_(std::make_unique<Impl>()) {
   configure_threads(threads);
   impl_->encoder = std::make_unique<OnnxGraph>(encoder_onnx);
-  impl_->decoder = std::make_unique<OnnxGraph>(decoder_onnx);
+  impl_->decoder = std::make_unique<OnnxGraph>(decoder_onnx, [this](const OnnxModel& m) {
+    impl_->taps = single_mask_taps(m);
+    return impl_->taps;
+  });
   const auto& ins = impl_->encoder->inputs();
   if (ins.size() != 1 || ins[0].dims.size() != 4 || (ins[0].dims[1] != 3 && ins[0].dims[1] != -1))
     throw Error(encoder_onnx, "expected one encoder input of shape [B,3,S,S] (normalised RGB)");
@@ -489,8 +630,19 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
     r.candidate_scores.push_back(iou[size_t(c)]);
     r.candidate_low_res.emplace_back(lowf.begin() + c * plane, lowf.begin() + (c + 1) * plane);
   }
+  if (k == 1 && impl_->taps.size() == 2) candidates_before_selection(impl_->taps, impl_->input_size, outs, n, emb, r);
   if (timings) timings->decoder_ms = now_ms() - t0;
   return r;
+}
+
+
+Image SamModel::mask_from_low_res(const SamEmbedding& emb, const std::vector<float>& logits) const {
+  const int low = int(std::lround(std::sqrt(double(logits.size()))));
+  if (low <= 0 || size_t(low) * low != logits.size())
+    throw Error("SAM: a low-res mask has " + std::to_string(logits.size()) + " values, not a square grid");
+  const AxisTaps tx = mask_axis_taps(low, impl_->input_size, emb.resized_width, emb.image_width);
+  const AxisTaps ty = mask_axis_taps(low, impl_->input_size, emb.resized_height, emb.image_height);
+  return candidate_mask(logits.data(), low, tx, ty);
 }
 
 // ---------------------------------------------------------------- predictor

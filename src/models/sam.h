@@ -78,6 +78,10 @@ class SamModel {
   // previous_low_res: low_res_logits of an earlier result on the same embedding.
   SegmentResult decode(const SamEmbedding& embedding, const std::vector<Click>& clicks,
                        const std::vector<float>* previous_low_res = nullptr, SamTimings* timings = nullptr) const;
+  // A low-res mask (SegmentResult::low_res_logits) as a 0/1 mask over the embedded image,
+  // upsampled as SAM's export does (bilinear to the model's input size, cropped, bilinear
+  // to the image). A single-mask decoder's other candidates are made this way.
+  Image mask_from_low_res(const SamEmbedding& embedding, const std::vector<float>& low_res_logits) const;
 
  private:
   struct Impl;
