@@ -55,7 +55,7 @@ int run_eval_ablation(const Args& args) {
       {"paper: hybrid + overlap IIM", [](segment::SessionOptions& o) {
          o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
          o.selection_prompt_rounds = 0;
-         o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
+         o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = o.granularity_consensus = false;
          o.propagation.hidden_fallback = true;
        }},
       {"- depth layers", [](segment::SessionOptions& o) { o.depth_layers = false; }},
@@ -66,8 +66,9 @@ int run_eval_ablation(const Args& args) {
       {"- neighbour coherence", [](segment::SessionOptions& o) { o.coherence = false; }},
       {"- centre evidence", [](segment::SessionOptions& o) { o.centre_rule.enabled = false; }},
       {"- agreement IIM", [](segment::SessionOptions& o) { o.agreement_inspection = false; }},
-      {"- candidate choice", [](segment::SessionOptions& o) { o.choose_candidate = false; }},
+      {"+ candidate choice", [](segment::SessionOptions& o) { o.choose_candidate = true; }},
       {"- selection prompts", [](segment::SessionOptions& o) { o.selection_prompt_rounds = 0; }},
+      {"- granularity consensus", [](segment::SessionOptions& o) { o.granularity_consensus = false; }},
       {"- no hidden clicks", [](segment::SessionOptions& o) { o.propagation.hidden_fallback = true; }},
   };
   const std::string which = args.get("configs", "");

@@ -27,7 +27,10 @@ const char* const kSegmentOptionsHelp =
     "  --no-coherence                select by vote share > tau alone (no nearest-neighbour decision)\n"
     "  --no-centre-rule              no selection of shares in (0.5, tau] by their centres lying in the masks\n"
     "  --overlap-inspection          IIM accepts a mask that merely overlaps the selection\n"
-    "  --no-candidate-choice         always take SAM's top-scored mask\n"
+    "  --candidate-choice            when SAM's top-scored mask disagrees with the selection, vote with\n"
+    "                                the agreeing candidate closest to it (off: it measured worse)\n"
+    "  --no-granularity-consensus    keep the clicked view's mask even when most views segment a larger\n"
+    "                                whole around it\n"
     "  --selection-prompts N         rounds prompting views no click reached (default 2, 0 = off)\n"
     "  --hidden-fallback             send a hidden click along the whole epipolar line\n"
     "  --sam-negatives               give negative clicks to SAM instead of cutting their region\n"
@@ -45,7 +48,7 @@ const std::set<std::string>& segment_value_flags() {
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate",
-                                          "no-candidate-choice", "hidden-fallback",
+                                          "candidate-choice", "no-granularity-consensus", "hidden-fallback",
                                           "sam-negatives"};
   return f;
 }
@@ -75,7 +78,8 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.background_gate = !paper && !args.has("no-background-gate");
   s.session.see_through = !paper && !args.has("no-see-through");
   s.session.agreement_inspection = !paper && !args.has("overlap-inspection");
-  s.session.choose_candidate = !paper && !args.has("no-candidate-choice");
+  s.session.choose_candidate = !paper && args.has("candidate-choice");
+  s.session.granularity_consensus = !paper && !args.has("no-granularity-consensus");
   s.session.propagation.hidden_fallback = paper || args.has("hidden-fallback");
   s.session.negative_regions = !paper && !args.has("sam-negatives");
   s.session.selection_prompt_rounds = paper ? 0 : args.get_int("selection-prompts", 2);

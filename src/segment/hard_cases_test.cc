@@ -66,6 +66,7 @@ Outcome run(const std::string& name, const SessionOptions& so, std::vector<Click
 SessionOptions paper() {
   SessionOptions o;
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
+  o.granularity_consensus = false;
   o.selection_prompt_rounds = 0;
   o.propagation.hidden_fallback = true;
   return o;
@@ -129,6 +130,26 @@ TEST(HardCases, ANegativeClickOnANeighbourRemovesOnlyTheNeighbour) {
               100 * one.iou, 100 * two.iou);
   EXPECT_GT(two.iou, one.iou - 0.03);
   EXPECT_GT(two.iou, 0.85);
+}
+
+TEST(HardCases, AClickOnOneSlatSelectsTheScreenMostViewsSegment) {
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // SAM masks the one clicked slat in the clicked view and the whole screen in most others:
+  // the clicked view's larger candidate is what the views agree on.
+  const Outcome ours = run("alcove/screen", SessionOptions());
+  SessionOptions fixed;
+  fixed.granularity_consensus = false;
+  const Outcome without = run("alcove/screen", fixed);
+  const ViewState& clicked = ours.session->view_states()[size_t(ours.session->clicks().back().view)];
+  int accepted = 0, accepted_without = 0;
+  for (const ViewState& v : ours.session->view_states()) accepted += v.status == ViewStatus::Accepted;
+  for (const ViewState& v : without.session->view_states()) accepted_without += v.status == ViewStatus::Accepted;
+  std::printf("[ hard ] alcove/screen: IoU %.1f%% (clicked view voted with candidate %d, %d views accepted); keeping "
+              "SAM's choice %.1f%% (%d views accepted)\n",
+              100 * ours.iou, clicked.candidate, accepted, 100 * without.iou, accepted_without);
+  EXPECT_NE(clicked.candidate, clicked.sam->mask_index);
+  EXPECT_GT(accepted, accepted_without);
+  EXPECT_GT(ours.iou, without.iou + 0.2);
 }
 
 }  // namespace

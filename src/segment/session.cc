@@ -387,11 +387,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
   });
   // A round is a function of the clicks: votes start empty and every view is re-judged.
   VoteAccumulator& acc = next.votes;
-  acc = VoteAccumulator(scene_.size());
   // The selection of the votes so far, decided over the Gaussians with positive votes
   // only (live_selection.h) and only after a vote changed it.
   LiveSelection& live = live_;
-  live.reset(scene_.size(), {o.tau, o.min_total_weight, o.centre_rule}, &excluded_);
   bool undecided = false;
   auto decide = [&]() {
     if (undecided) live.decide(acc);
@@ -443,71 +441,142 @@ RoundReport Session::run_round(State& next, const State& prev) {
     ++rep.accepted;
   };
 
-  for (size_t k : order) {
-    ViewState& vs = fresh[k];
-    if (vs.status == ViewStatus::NoClicks) continue;
-    const models::SegmentResult& r = *results[k];
-    vs.sam = results[k];
-    vs.sam_negative = negatives[k];
-    const bool inspect = !first && o.inspection;
-    if (!first) decide();
-    const std::vector<bool>& current = live.eligible();
-    Image coverage, mask;
-    ViewVotes raw;
-    bool have_raw = false;
-    const bool several = r.candidates.size() > 1 && o.choose_candidate;
-    if (inspect || (!first && several)) {
-      const std::vector<float>& values = live.values();
-      if (several) {  // the coverage decides the candidate, then the candidate's votes
-        coverage = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
-        take_candidate(vs, r, choose(r, &coverage, o.min_coverage_pixels));
-      } else {  // one pass over the mask's tiles gives the selection's coverage and the mask's votes
-        take_candidate(vs, r, r.mask_index);
-        if (vs.mask_pixels > 0) {
-          mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
-          raw = masked_votes(views_[k].frame, mask, o.threads, &values, &coverage);
-          have_raw = true;
+  // IIM: does a clicked view's mask agree with the selection rendered in it?
+  auto passes = [&](const Agreement& a) {
+    return o.agreement_inspection ? a.coverage >= o.min_coverage_pixels &&
+                                        a.selection_inside() >= o.min_selection_inside &&
+                                        a.mask_on_selection() >= o.min_mask_on_selection
+                                  : a.both > 0 && a.mask_on_selection() >= o.min_overlap;
+  };
+  // SAM's own choice when it agrees with the selection, else the agreeing candidate of
+  // highest IoU with it (a view whose best-scored mask is a larger or smaller part than the
+  // object), else SAM's choice for inspection to drop. Choosing by IoU alone would bend
+  // every view to the selection so far, which after one view is often a part.
+  auto fallback_candidate = [&](const models::SegmentResult& r, const Image& coverage) {
+    if (passes(agreement(r.candidates[size_t(r.mask_index)], coverage))) return r.mask_index;
+    int best = r.mask_index;
+    double best_iou = -1;
+    for (size_t c = 0; c < r.candidates.size(); ++c) {
+      const Agreement a = agreement(r.candidates[c], coverage);
+      if (passes(a) && a.iou() > best_iou) {
+        best_iou = a.iou();
+        best = int(c);
+      }
+    }
+    return best;
+  };
+
+  // One pass of inspection and voting over the clicked views; `forced_first`: the candidate
+  // the first view votes with (-1: SAM's own choice).
+  const std::vector<ViewState> unjudged = fresh;
+  size_t first_view = 0;
+  auto inspect_and_vote = [&](int forced_first) {
+    fresh = unjudged;
+    acc = VoteAccumulator(scene_.size());
+    live.reset(scene_.size(), {o.tau, o.min_total_weight, o.centre_rule}, &excluded_);
+    first = true;
+    undecided = false;
+    rep.accepted = rep.dropped = 0;
+    for (size_t k : order) {
+      ViewState& vs = fresh[k];
+      if (vs.status == ViewStatus::NoClicks) continue;
+      const models::SegmentResult& r = *results[k];
+      vs.sam = results[k];
+      vs.sam_negative = negatives[k];
+      const bool inspect = !first && o.inspection;
+      if (!first) decide();
+      const std::vector<bool>& current = live.eligible();
+      Image coverage, mask;
+      ViewVotes raw;
+      bool have_raw = false;
+      const bool several = r.candidates.size() > 1 && o.choose_candidate;
+      if (inspect || (!first && several)) {
+        const std::vector<float>& values = live.values();
+        if (several) {  // the coverage decides the candidate, then the candidate's votes
+          coverage = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
+          take_candidate(vs, r, inspect ? fallback_candidate(r, coverage) : choose(r, &coverage, o.min_coverage_pixels));
+        } else {  // one pass over the mask's tiles gives the selection's coverage and the mask's votes
+          take_candidate(vs, r, r.mask_index);
+          if (vs.mask_pixels > 0) {
+            mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
+            raw = masked_votes(views_[k].frame, mask, o.threads, &values, &coverage);
+            have_raw = true;
+          }
         }
+      } else {
+        take_candidate(vs, r, first && forced_first >= 0 ? forced_first : r.mask_index);
       }
-    } else {
-      take_candidate(vs, r, r.mask_index);
-    }
-    if (vs.mask_pixels == 0) {
-      vs.status = ViewStatus::EmptyMask;
-      ++rep.dropped;
-      continue;
-    }
-    if (mask.empty()) mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
-    if (inspect) {
-      Agreement a = agreement(mask, coverage);
-      if (have_raw) {
-        // The coverage is only rendered under the mask: the selection's whole extent in
-        // this view is its share of the view's all-pixel votes (the same blending weights).
-        double total = 0, inside = 0;
-        const ViewVotes& all = views_[k].all_votes;
-        for (size_t i = 0; i < all.index.size(); ++i)
-          if (current[all.index[i]]) total += double(all.weight[i]);
-        for (size_t i = 0; i < raw.index.size(); ++i)
-          if (current[raw.index[i]]) inside += double(raw.weight[i]);
-        a.coverage = std::max(a.both, total / kVoteScale);
-        a.inside = total > 0 ? inside / total : 0.0;
-      }
-      vs.overlap = a.mask_on_selection();
-      vs.selection_inside = a.selection_inside();
-      vs.iou = a.iou();
-      vs.inspected = true;
-      const bool ok = o.agreement_inspection
-                          ? a.coverage >= o.min_coverage_pixels && vs.selection_inside >= o.min_selection_inside &&
-                                vs.overlap >= o.min_mask_on_selection
-                          : a.both > 0 && vs.overlap >= o.min_overlap;
-      if (!ok) {
-        vs.status = ViewStatus::NoOverlap;
+      if (first) first_view = k;
+      if (vs.mask_pixels == 0) {
+        vs.status = ViewStatus::EmptyMask;
         ++rep.dropped;
         continue;
       }
+      if (mask.empty()) mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
+      if (inspect) {
+        Agreement a = agreement(mask, coverage);
+        if (have_raw) {
+          // The coverage is only rendered under the mask: the selection's whole extent in
+          // this view is its share of the view's all-pixel votes (the same blending weights).
+          double total = 0, inside = 0;
+          const ViewVotes& all = views_[k].all_votes;
+          for (size_t i = 0; i < all.index.size(); ++i)
+            if (current[all.index[i]]) total += double(all.weight[i]);
+          for (size_t i = 0; i < raw.index.size(); ++i)
+            if (current[raw.index[i]]) inside += double(raw.weight[i]);
+          a.coverage = std::max(a.both, total / kVoteScale);
+          a.inside = total > 0 ? inside / total : 0.0;
+        }
+        vs.overlap = a.mask_on_selection();
+        vs.selection_inside = a.selection_inside();
+        vs.iou = a.iou();
+        vs.inspected = true;
+        if (!passes(a)) {
+          vs.status = ViewStatus::NoOverlap;
+          ++rep.dropped;
+          continue;
+        }
+      }
+      vote(k, vs, first ? nullptr : &current, have_raw ? &raw : nullptr, mask);
+      first = false;
     }
-    vote(k, vs, first ? nullptr : &current, have_raw ? &raw : nullptr, mask);
-    first = false;
+  };
+  inspect_and_vote(-1);
+  if (o.granularity_consensus && !first) {
+    // Most clicked views' masks hold the first view's selection but are far larger than it
+    // (SAM took one slat of a screen where the user clicked, the whole screen elsewhere):
+    // the first mask is a finer granularity than the object the other views agree on. Its
+    // larger candidates are tried and the one most views accept is kept.
+    int larger = 0;
+    for (size_t k = 0; k < V; ++k) {
+      const ViewState& vs = fresh[k];
+      larger += k != first_view && vs.status == ViewStatus::NoOverlap && vs.inspected &&
+                vs.selection_inside >= o.min_selection_inside;
+    }
+    const models::SegmentResult& r = *results[first_view];
+    if (r.candidates.size() > 1 && larger >= 2 && larger > rep.accepted - 1) {
+      auto area = [](const Image& m) {
+        size_t n = 0;
+        for (float v : m.data) n += v > 0.5f;
+        return n;
+      };
+      const int used = fresh[first_view].candidate;
+      const size_t used_area = area(r.candidates[size_t(used)]);
+      int best = -1, best_accepted = rep.accepted, last = -1;
+      for (size_t c = 0; c < r.candidates.size(); ++c) {
+        if (int(c) == used || r.candidate_scores[c] < o.min_granularity_score ||
+            double(area(r.candidates[c])) < o.granularity_growth * double(used_area))
+          continue;
+        inspect_and_vote(int(c));
+        last = int(c);
+        if (rep.accepted > best_accepted) {
+          best_accepted = rep.accepted;
+          best = int(c);
+        }
+      }
+      if (best != last && last >= 0) inspect_and_vote(best);
+      rep.larger_granularity = best >= 0;
+    }
   }
 
   // 4. Views no click reached: prompt SAM from the selection rendered in them.
