@@ -26,6 +26,9 @@ struct BackgroundOptions {
   int min_directions = 2;     // of the four lines (row, column, diagonals), this many must give an estimate
   double agreement = 0.01;    // ... agreeing within this relative inverse depth
   double tolerance = 0.01;    // a Gaussian this close (relative inverse depth) to the surface counts as on it
+  // ... unless the clicked Gaussians lie within it, at least twice this far in front: then half
+  // their (weighted median) offset (0 or >= tolerance: the fixed tolerance alone)
+  double min_tolerance = 0.003;
   // A flat Gaussian counts as lying in the surface only when its normal is within about 35
   // degrees of the surface's (|cos| >= this); 0: depth alone decides.
   double min_alignment = 0.8;

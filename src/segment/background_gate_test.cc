@@ -171,6 +171,37 @@ TEST(BackgroundGate, NeverTakesTheClickedSurfaceOrMostOfTheSelection) {
   EXPECT_EQ(neutral.index, (std::vector<uint32_t>{0}));
 }
 
+TEST(BackgroundGate, ATargetJustInFrontOfTheWallNarrowsTheTolerance) {
+  // Slats 4 cm before a wall 5 m away: 0.8 % nearer in inverse depth, inside the fixed 1 %.
+  GateScene s;
+  s.add(0.2, -0.2, 4.96, 0.05, 0.05, 0.05);   // 0: the clicked slat
+  s.add(-0.2, -0.2, 5.005, 0.03, 0.03, 0.03); // 1: the wall seen between the slats, 0.1 % behind
+  s.add(-0.2, 0.2, 4.99, 0.03, 0.03, 0.03);   // 2: wall noise, 0.2 % in front
+  const Image bg = background_inverse_depth(s.mask, s.depth, s.alpha, 3.8);
+  double u, v;
+  ASSERT_TRUE(s.cam.project({0.2, -0.2, 4.96}, u, v));
+  BackgroundTarget clicked;
+  clicked.seeds.push_back({u, v});
+  ViewVotes positive = s.positive, neutral;
+  EXPECT_EQ(gate_background(s.scene, s.cam, bg, clicked, positive, neutral), 2u);
+  EXPECT_EQ(positive.index, (std::vector<uint32_t>{0}));
+  EXPECT_EQ(neutral.index, (std::vector<uint32_t>{1, 2}));
+  // With the fixed tolerance the slat lies "in" the wall, so the gate stands aside.
+  BackgroundOptions fixed;
+  fixed.min_tolerance = 0;
+  ViewVotes p2 = s.positive, n2;
+  EXPECT_EQ(gate_background(s.scene, s.cam, bg, clicked, p2, n2, fixed), 0u);
+  // A target lying in the surface itself (a poster on the wall) is not narrowed down to.
+  GateScene poster;
+  poster.add(0.2, -0.2, 4.999, 0.05, 0.05, 0.05);
+  poster.add(-0.2, -0.2, 5.0, 0.03, 0.03, 0.03);
+  ASSERT_TRUE(poster.cam.project({0.2, -0.2, 4.999}, u, v));
+  BackgroundTarget on_wall;
+  on_wall.seeds.push_back({u, v});
+  ViewVotes p3 = poster.positive, n3;
+  EXPECT_EQ(gate_background(poster.scene, poster.cam, bg, on_wall, p3, n3), 0u);
+}
+
 TEST(BackgroundGate, NearDepthIsTheWeightedNearSide) {
   GateScene s;
   s.add(0, 0, 2.0, 0.01, 0.01, 0.01);

@@ -430,6 +430,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       const Image bg = background_inverse_depth(mask, view.depth, view.alpha,
                                                 near * (1 - o.background_options.occluder_margin), o.background_options);
       vs.background_gaussians = gate_background(scene_, view.camera, bg, target, vs.positive, vs.neutral, o.background_options);
+      if (getenv("BGDEBUG")) { size_t est=0, m=0; for (size_t i=0;i<bg.data.size();++i){ est += bg.data[i]>0; m += mask.data[i]>0.5f;} fprintf(stderr, "view %zu mask %zu est %zu bg %zu pos %zu near %.3f layers %d gated %.2f\n", k, m, est, vs.background_gaussians, vs.positive.index.size(), near, vs.depth_layers, vs.gated_share); }
     }
     ViewVotes centred;
     if (o.centre_rule.enabled)
