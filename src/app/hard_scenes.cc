@@ -293,6 +293,114 @@ EvalScene courtyard(const EvalSetOptions& opt, bool coarse) {
   return s;
 }
 
+// A patio seen from a half orbit in front of a house wall, built after the other scenes'
+// additions were tuned, as a check on objects they were not tuned on: a chair with a slatted
+// back, a picket fence with a ball behind it, a potted plant (the truth: plant and pot), a
+// thin pole taller than the frame, a round table with a cup standing on it.
+EvalScene patio(const EvalSetOptions& opt) {
+  EvalScene s;
+  s.name = "patio";
+  DemoScene& demo = s.scene;
+  GaussianScene& g = demo.bundle.gaussians;
+  g.sh_degree = 3;
+  SplitMix64 rng(29);
+  SceneBuilder b{g, demo.labels, rng, 3};
+  const double d = opt.density, sz = 1 / std::sqrt(d);
+  const double wall_y = 2.6;
+  for (int i = 0, n = int(8000 * d); i < n; ++i) {  // rendered house wall with panels
+    Vec3 p{rng.range(-3.6, 3.6), wall_y, rng.range(0, 3.2)};
+    const int panel = int(std::floor((p.x + 10) / 0.9));
+    const bool seam = std::fmod(p.x + 10, 0.9) < 0.03;
+    Vec3 c = seam ? Vec3{0.55, 0.55, 0.58} : Vec3{0.86, 0.84, 0.76} + Vec3{1, 1, 1} * (0.06 * cell_noise(panel, 3));
+    b.splat(p, {0, -1, 0}, 0.06 * sz, c, -1, 0.02);
+  }
+  for (int i = 0, n = int(8000 * d); i < n; ++i) {  // wooden deck
+    Vec3 p{rng.range(-3.6, 3.6), rng.range(-3.2, wall_y), 0};
+    const int board = int(std::floor((p.y + 10) / 0.18));
+    const bool gap = std::fmod(p.y + 10, 0.18) < 0.02;
+    Vec3 c = gap ? Vec3{0.22, 0.16, 0.10} : Vec3{0.58, 0.44, 0.30} + Vec3{1, 0.8, 0.6} * (0.1 * cell_noise(board, 5));
+    b.splat(p, {0, 0, 1}, 0.06 * sz, c, -1, 0.02);
+  }
+  const Vec3 wood{0.42, 0.26, 0.14};
+  // The chair: a seat, four thin legs, a back of five slats under a top rail.
+  const Vec3 chair_c{-1.4, 1.5, 0};
+  const int chair = add_object(demo, "chair", chair_c + Vec3{0, 0, 0.5}, 0.6f);
+  box(b, chair_c + Vec3{0, 0, 0.45}, 0.22, 0.025, int(1800 * d), 0.03 * sz, wood, wood * 0.8, chair);
+  for (double lx : {-0.19, 0.19})
+    for (double ly : {-0.19, 0.19})
+      cylinder(b, chair_c + Vec3{lx, ly, 0}, 0.022, 0.022, 0.43, int(160 * d) + 40, 0.014 * sz, wood * 0.9, chair, false);
+  for (int k = 0; k < 5; ++k)
+    for (double z = 0.5; z < 0.93; z += 0.025)
+      b.strip(chair_c + Vec3{-0.18 + k * 0.09, 0.2, z}, {0, -1, 0}, {0, 0, 1}, 0.022, 0.016, wood, chair, 0.02);
+  for (double x = -0.22; x <= 0.22; x += 0.02)
+    for (double z : {0.94, 0.97})
+      b.strip(chair_c + Vec3{x, 0.2, z}, {0, -1, 0}, {1, 0, 0}, 0.02, 0.02, wood * 1.1, chair, 0.02);
+  // A picket fence (pickets 8 cm wide, 8 cm apart, on two rails) and a ball behind it.
+  const double fence_y = 0.9;
+  const int fence = add_object(demo, "fence", {1.5, fence_y, 0.45}, 1.1f);
+  for (int k = 0; k < 13; ++k) {
+    const double x = 0.5 + k * 0.16;
+    for (double z = 0.03; z < 0.9; z += 0.025)
+      for (double off : {-0.022, 0.022})
+        b.strip({x + off, fence_y, z}, {0, -1, 0}, {0, 0, 1}, 0.022, 0.018, {0.93, 0.93, 0.90}, fence, 0.02);
+  }
+  for (double x = 0.45; x < 2.5; x += 0.02)
+    for (double z : {0.22, 0.68})
+      b.strip({x, fence_y + 0.03, z}, {0, -1, 0}, {1, 0, 0}, 0.02, 0.03, {0.85, 0.85, 0.82}, fence, 0.02);
+  const Vec3 ball_c{1.45, 1.45, 0.24};
+  const int ball = add_object(demo, "ball", ball_c, 0.3f);
+  for (int i = 0, n = int(2500 * d); i < n; ++i) {
+    Vec3 u;
+    do u = {rng.normal(), rng.normal(), rng.normal()};
+    while (norm(u) < 1e-6);
+    u = normalized(u);
+    const bool stripe = std::abs(u.z) < 0.2;
+    b.splat(ball_c + u * 0.24, u, 0.03 * sz, stripe ? Vec3{0.95, 0.85, 0.10} : Vec3{0.85, 0.15, 0.45}, ball, 0.08);
+  }
+  // A potted plant: pot and foliage are one object (what a user means by "the plant").
+  const Vec3 plant_c{0.1, 2.0, 0};
+  const int plant = add_object(demo, "plant", plant_c + Vec3{0, 0, 0.6}, 0.6f);
+  cylinder(b, plant_c, 0.15, 0.19, 0.36, int(1500 * d), 0.03 * sz, {0.66, 0.33, 0.20}, plant, false, 0.12);
+  for (int leaf = 0, n = int(90 * std::max(1.0, d)); leaf < n; ++leaf) {
+    Vec3 u;
+    do u = {rng.range(-1, 1), rng.range(-1, 1), rng.range(-1, 1)};
+    while (dot(u, u) > 1);
+    const Vec3 c = plant_c + Vec3{u.x * 0.38, u.y * 0.3, 0.78 + u.z * 0.36};
+    const Vec3 dir = normalized(Vec3{rng.normal(), rng.normal() * 0.3, rng.normal() + 0.8});
+    const Vec3 nrm = normalized(Vec3{rng.normal() * 0.4, -1, rng.normal() * 0.4});
+    const Vec3 col{rng.range(0.10, 0.22), rng.range(0.36, 0.55), rng.range(0.10, 0.20)};
+    for (int k = -2; k <= 2; ++k) b.strip(c + dir * (k * 0.03), nrm, dir, 0.028, 0.02 * (1 - std::abs(k) * 0.2), col, plant, 0.04);
+  }
+  // A thin pole taller than the frame.
+  const int pole = add_object(demo, "pole", {2.6, 2.0, 1.7}, 1.8f);
+  cylinder(b, {2.6, 2.0, 0}, 0.04, 0.035, 3.4, int(1800 * d), 0.02 * sz, {0.16, 0.30, 0.22}, pole, true);
+  // A round table (top and a central leg) with a cup standing on it.
+  const Vec3 table_c{-0.4, -0.3, 0};
+  const int table = add_object(demo, "table", table_c + Vec3{0, 0, 0.5}, 0.5f);
+  cylinder(b, table_c + Vec3{0, 0, 0.66}, 0.36, 0.36, 0.04, int(2400 * d), 0.03 * sz, {0.20, 0.36, 0.52}, table, true);
+  cylinder(b, table_c, 0.05, 0.04, 0.66, int(500 * d), 0.02 * sz, {0.20, 0.36, 0.52}, table, false);
+  const Vec3 cup_c = table_c + Vec3{0.12, -0.1, 0.70};
+  const int cup = add_object(demo, "cup", cup_c + Vec3{0, 0, 0.05}, 0.08f);
+  cylinder(b, cup_c, 0.04, 0.045, 0.1, int(400 * std::max(d, 0.5)), 0.012 * sz, {0.95, 0.95, 0.95}, cup, true);
+  // A half orbit in front of the wall, two heights.
+  const Vec3 target{0.3, 0.8, 0.55};
+  int id = 0;
+  for (int row = 0; row < 2; ++row)
+    for (int k = 0; k < 10; ++k) {
+      const double a = (-75 + 150.0 * k / 9) * M_PI / 180;
+      const Vec3 eye{target.x + 4.3 * std::sin(a), target.y - 4.3 * std::cos(a), row ? 2.0 : 1.1};
+      demo.bundle.cameras.push_back(named(Camera::look_at(eye, target, {0, 0, 1}, opt.width, opt.height, 60.0), id++, "arc"));
+    }
+  add_task(s, "chair", "compound object with gaps in front of a wall", chair, chair_c + Vec3{0, 0.19, 0.955}, 4);
+  add_task(s, "fence", "pickets with gaps in front of a ball", fence, {0.5 + 6 * 0.16, fence_y - 0.01, 0.45}, 4);
+  add_task(s, "ball", "object seen through a fence", ball, ball_c + Vec3{0, -0.24, 0.0}, 4, 20);
+  add_task(s, "plant", "compound object: a plant with its pot", plant, plant_c + Vec3{0, -0.3, 0.85}, 13);
+  add_task(s, "pole", "thin pole taller than the frame", pole, {2.6, 2.0 - 0.04, 2.3}, 6);
+  add_task(s, "cup", "tiny object on a table", cup, cup_c + Vec3{0, -0.045, 0.05}, 14);
+  add_task(s, "table", "compound object with a smaller one on it", table, table_c + Vec3{0, -0.36, 0.68}, 3);
+  return s;
+}
+
 EvalScene orbit_demo(const EvalSetOptions& opt) {
   EvalScene s;
   s.name = "orbit";
@@ -356,6 +464,7 @@ std::vector<EvalScene> make_eval_scenes(const EvalSetOptions& opt) {
   out.push_back(courtyard(opt, false));
   out.push_back(courtyard(opt, true));
   out.push_back(orbit_demo(opt));
+  out.push_back(patio(opt));
   return out;
 }
 
