@@ -19,6 +19,7 @@
 #include "app/segment_args.h"
 #include "core/error.h"
 #include "io/scene_loader.h"
+#include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "segment/evaluation.h"
 #include "segment/overlay.h"
@@ -55,7 +56,7 @@ int run_eval_ablation(const Args& args) {
       {"paper: hybrid + overlap IIM", [](segment::SessionOptions& o) {
          o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
          o.selection_prompt_rounds = 0;
-         o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = o.granularity_consensus = false;
+         o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = o.granularity_consensus = o.whole_neutral = false;
          o.propagation.hidden_fallback = true;
        }},
       {"- depth layers", [](segment::SessionOptions& o) { o.depth_layers = false; }},
@@ -69,6 +70,7 @@ int run_eval_ablation(const Args& args) {
       {"+ candidate choice", [](segment::SessionOptions& o) { o.choose_candidate = true; }},
       {"- selection prompts", [](segment::SessionOptions& o) { o.selection_prompt_rounds = 0; }},
       {"- granularity consensus", [](segment::SessionOptions& o) { o.granularity_consensus = false; }},
+      {"- part/whole neutral", [](segment::SessionOptions& o) { o.whole_neutral = false; }},
       {"- no hidden clicks", [](segment::SessionOptions& o) { o.propagation.hidden_fallback = true; }},
   };
   const std::string which = args.get("configs", "");
@@ -160,10 +162,20 @@ int run_eval_ablation(const Args& args) {
     namespace fs = std::filesystem;
     const fs::path dir = fs::path(overlays) / name;
     fs::create_directories(dir);
-    for (size_t k = 0; k < session.views().size(); ++k)
+    std::string table = "view status candidate sam_score mask_px overlap selection_inside iou prompted depth_layers background\n";
+    for (size_t k = 0; k < session.views().size(); ++k) {
+      const segment::ViewState& v = session.view_states()[k];
       write_png((dir / (session.views()[k].name + ".png")).string(),
-                segment::make_overlay(session.views()[k].rgb, session.view_states()[k],
-                                      session.selection_coverage(int(k))));
+                segment::make_overlay(session.views()[k].rgb, v, session.selection_coverage(int(k))));
+      char line[256];
+      std::snprintf(line, sizeof line, "%s %s %d %.3f %d %.3f %.3f %.3f %d %d %zu\n", session.views()[k].name.c_str(),
+                    v.status == segment::ViewStatus::Accepted ? "accepted" : v.status == segment::ViewStatus::NoClicks ? "no-click"
+                    : v.status == segment::ViewStatus::NoOverlap ? "dropped" : v.status == segment::ViewStatus::EmptyMask ? "empty" : "skipped",
+                    v.candidate, v.sam_score, v.mask_pixels, v.overlap, v.selection_inside, v.iou, int(v.from_selection),
+                    v.depth_layers, v.background_gaussians);
+      table += line;
+    }
+    write_file_atomic((dir / "views.txt").string(), table);  // the per-view evidence as figures
   };
   for (size_t ci = 0; ci < configs.size(); ++ci) {
     segment::SessionOptions so = setup.session;

@@ -31,6 +31,8 @@ const char* const kSegmentOptionsHelp =
     "                                the agreeing candidate closest to it (off: it measured worse)\n"
     "  --no-granularity-consensus    keep the clicked view's mask even when most views segment a larger\n"
     "                                whole around it\n"
+    "  --no-whole-neutral            let a view whose mask is a part of a larger candidate vote against\n"
+    "                                the rest of that candidate (the vote keeps the intersection)\n"
     "  --selection-prompts N         rounds prompting views no click reached (default 2, 0 = off)\n"
     "  --hidden-fallback             send a hidden click along the whole epipolar line\n"
     "  --sam-negatives               give negative clicks to SAM instead of cutting their region\n"
@@ -48,7 +50,7 @@ const std::set<std::string>& segment_value_flags() {
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate",
-                                          "candidate-choice", "no-granularity-consensus", "hidden-fallback",
+                                          "candidate-choice", "no-granularity-consensus", "no-whole-neutral", "hidden-fallback",
                                           "sam-negatives"};
   return f;
 }
@@ -80,6 +82,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.agreement_inspection = !paper && !args.has("overlap-inspection");
   s.session.choose_candidate = !paper && args.has("candidate-choice");
   s.session.granularity_consensus = !paper && !args.has("no-granularity-consensus");
+  s.session.whole_neutral = !paper && !args.has("no-whole-neutral");
   s.session.propagation.hidden_fallback = paper || args.has("hidden-fallback");
   s.session.negative_regions = !paper && !args.has("sam-negatives");
   s.session.selection_prompt_rounds = paper ? 0 : args.get_int("selection-prompts", 2);

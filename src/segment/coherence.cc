@@ -4,8 +4,9 @@ namespace isegman::segment {
 
 std::vector<bool> coherent_selection(const VoteAccumulator& votes, const GaussianScene& scene, const CentreIndex& index,
                                      double tau, double min_total, const CoherenceOptions& o, const CentreRule& centre,
-                                     const std::vector<bool>* known_strong, const std::vector<uint32_t>* candidates) {
-  const std::vector<bool> computed = known_strong ? std::vector<bool>() : votes.select(tau, min_total, centre);
+                                     const std::vector<bool>* known_strong, const std::vector<uint32_t>* candidates,
+                                     const WholeRule& whole) {
+  const std::vector<bool> computed = known_strong ? std::vector<bool>() : votes.select(tau, min_total, centre, whole);
   const std::vector<bool>& strong = known_strong ? *known_strong : computed;
   std::vector<bool> out = strong;
   // select(-1) and ratios(), per Gaussian where asked.

@@ -29,6 +29,6 @@ struct CoherenceOptions {
 std::vector<bool> coherent_selection(const VoteAccumulator& votes, const GaussianScene& scene, const CentreIndex& index,
                                      double tau, double min_total, const CoherenceOptions& options = {},
                                      const CentreRule& centre = {}, const std::vector<bool>* strong = nullptr,
-                                     const std::vector<uint32_t>* candidates = nullptr);
+                                     const std::vector<uint32_t>* candidates = nullptr, const WholeRule& whole = {});
 
 }  // namespace isegman::segment

@@ -20,18 +20,22 @@ using testing::sam_dir;
 using testing::sam_or_null;
 using testing::view_options;
 
-const std::vector<EvalScene>& scenes() {
-  static const std::vector<EvalScene> s = [] {
+// The evaluation set at 320x240 (most tests: faster), or at the ablation's 480x360 where
+// SAM's masks differ with the resolution in the way a test is about.
+const std::vector<EvalScene>& scenes(bool full = false) {
+  static const std::vector<EvalScene> small = [] {
     EvalSetOptions o;
     o.width = 320;
     o.height = 240;
     return make_eval_scenes(o);
   }();
-  return s;
+  if (!full) return small;
+  static const std::vector<EvalScene> large = make_eval_scenes(EvalSetOptions{});
+  return large;
 }
 
-const EvalTaskSpec& task(const std::string& name, const EvalScene*& scene) {
-  for (const EvalScene& s : scenes())
+const EvalTaskSpec& task(const std::string& name, const EvalScene*& scene, bool full = false) {
+  for (const EvalScene& s : scenes(full))
     for (const EvalTaskSpec& t : s.tasks)
       if (t.name == name) {
         scene = &s;
@@ -43,12 +47,13 @@ const EvalTaskSpec& task(const std::string& name, const EvalScene*& scene) {
 struct Outcome {
   double iou = 0;
   size_t selected = 0, background = 0;  // selected Gaussians, of them not the target
+  size_t scenery = 0;                    // ... of them no object's (wall, floor)
   std::unique_ptr<Session> session;
 };
 
-Outcome run(const std::string& name, const SessionOptions& so, std::vector<Click> extra = {}) {
+Outcome run(const std::string& name, const SessionOptions& so, std::vector<Click> extra = {}, bool full = false) {
   const EvalScene* s = nullptr;
-  const EvalTaskSpec& t = task(name, s);
+  const EvalTaskSpec& t = task(name, s, full);
   std::vector<Click> clicks{pixel_centre_click(t.x, t.y, 1)};
   clicks.insert(clicks.end(), extra.begin(), extra.end());
   Outcome o;
@@ -58,6 +63,7 @@ Outcome run(const std::string& name, const SessionOptions& so, std::vector<Click
   for (size_t i = 0; i < sel.size(); ++i) {
     o.selected += sel[i];
     o.background += sel[i] && !truth[i];
+    o.scenery += sel[i] && s->scene.labels[i] < 0;
   }
   o.iou = score_selection(s->scene.bundle.gaussians, s->scene.bundle.cameras, truth, sel).iou;
   return o;
@@ -66,7 +72,7 @@ Outcome run(const std::string& name, const SessionOptions& so, std::vector<Click
 SessionOptions paper() {
   SessionOptions o;
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
-  o.granularity_consensus = false;
+  o.granularity_consensus = o.whole_neutral = false;
   o.selection_prompt_rounds = 0;
   o.propagation.hidden_fallback = true;
   return o;
@@ -78,12 +84,13 @@ TEST(HardCases, FoliageInFrontOfAWallDoesNotSelectTheWallSeenThroughItsGaps) {
   SessionOptions no_layers;
   no_layers.depth_layers = false;
   const Outcome without = run("garden/bush", no_layers);
-  std::printf("[ hard ] garden/bush: IoU %.1f%%, %zu of %zu selected are not the bush; without depth layers IoU "
-              "%.1f%%, %zu of %zu\n",
-              100 * ours.iou, ours.background, ours.selected, 100 * without.iou, without.background, without.selected);
+  std::printf("[ hard ] garden/bush: IoU %.1f%%, %zu of %zu selected are the wall or floor (%zu not the bush: its "
+              "pot is a whole it may be part of); without depth layers IoU %.1f%%, %zu of %zu\n",
+              100 * ours.iou, ours.scenery, ours.selected, ours.background, 100 * without.iou, without.scenery,
+              without.selected);
   EXPECT_GT(ours.iou, 0.85);
-  EXPECT_LT(ours.background, ours.selected / 20);
-  EXPECT_LT(ours.background, without.background);
+  EXPECT_LT(ours.scenery, ours.selected / 50);
+  EXPECT_LT(ours.scenery, without.scenery);
 }
 
 TEST(HardCases, ViewsNoClickReachesArePromptedFromTheSelection) {
@@ -149,6 +156,22 @@ TEST(HardCases, AClickOnOneSlatSelectsTheScreenMostViewsSegment) {
               100 * ours.iou, clicked.candidate, accepted, 100 * without.iou, accepted_without);
   EXPECT_NE(clicked.candidate, clicked.sam->mask_index);
   EXPECT_GT(accepted, accepted_without);
+  EXPECT_GT(ours.iou, without.iou + 0.2);
+}
+
+TEST(HardCases, ACompoundObjectIsSelectedWholeWhereViewsDisagreeOnThePart) {
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // A click on the back of a chair: SAM masks the back in most views and the whole chair in
+  // some. The views that only mask the back leave the rest of their larger candidate open.
+  const Outcome ours = run("patio/chair", SessionOptions(), {}, true);
+  SessionOptions intersection;
+  intersection.whole_neutral = false;
+  const Outcome without = run("patio/chair", intersection, {}, true);
+  int open = 0;
+  for (const ViewState& v : ours.session->view_states()) open += v.status == ViewStatus::Accepted && v.whole_pixels > 0;
+  std::printf("[ hard ] patio/chair: IoU %.1f%% (%d views left part or whole open); votes against the rest %.1f%%\n",
+              100 * ours.iou, open, 100 * without.iou);
+  EXPECT_GT(open, 3);
   EXPECT_GT(ours.iou, without.iou + 0.2);
 }
 

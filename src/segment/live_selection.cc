@@ -40,7 +40,7 @@ void LiveSelection::decide(const VoteAccumulator& votes) {
   for (uint32_t i : members_) set(i, false);
   members_.clear();
   auto visit = [&](uint32_t i) {
-    if (votes.selects(i, rule_.tau, min_fixed_, rule_.centre)) members_.push_back(i);
+    if (votes.selects(i, rule_.tau, min_fixed_, rule_.centre, rule_.whole)) members_.push_back(i);
   };
   if (everyone_)
     for (uint32_t i = 0; i < uint32_t(votes.size()); ++i) visit(i);

@@ -18,6 +18,7 @@ struct SelectionRule {
   double tau = 0.8;
   double min_total = 0.05;
   CentreRule centre;
+  WholeRule whole;
 };
 
 class LiveSelection {

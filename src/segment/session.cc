@@ -208,6 +208,34 @@ int choose(const models::SegmentResult& r, const Image* coverage, int min_pixels
   return best;
 }
 
+// What the larger candidates that contain candidate `c` (>= 90 % of it, at most max_growth
+// times its area, predicted IoU >= min_score) add around it, less the negative clicks'
+// region: the view cannot tell part from whole there. Empty when nothing is added.
+Image whole_band(const models::SegmentResult& r, int c, const Image* cut, double max_growth, double min_score) {
+  if (r.candidates.size() < 2) return {};
+  const Image& m = r.candidates[size_t(c)];
+  auto area = [](const Image& x) {
+    size_t n = 0;
+    for (float v : x.data) n += v > 0.5f;
+    return n;
+  };
+  const size_t a = area(m);
+  Image band;
+  for (size_t o = 0; o < r.candidates.size(); ++o) {
+    const Image& w = r.candidates[o];
+    if (int(o) == c || r.candidate_scores[o] < min_score || w.data.size() != m.data.size()) continue;
+    const size_t wa = area(w);
+    if (wa <= a || double(wa) > max_growth * double(a)) continue;
+    size_t inside = 0;
+    for (size_t i = 0; i < m.data.size(); ++i) inside += m.data[i] > 0.5f && w.data[i] > 0.5f;
+    if (double(inside) < 0.9 * double(a)) continue;
+    if (band.empty()) band = Image(m.width, m.height, 1);
+    for (size_t i = 0; i < m.data.size(); ++i)
+      if (w.data[i] > 0.5f && !(m.data[i] > 0.5f) && !(cut && cut->data[i] > 0.5f)) band.data[i] = 1.f;
+  }
+  return band;
+}
+
 void take_candidate(ViewState& vs, const models::SegmentResult& r, int c) {
   const Image& m = r.candidates.empty() ? r.mask : r.candidates[size_t(c)];
   const Image* cut = vs.sam_negative ? &vs.sam_negative->mask : nullptr;
@@ -406,6 +434,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     if (raw) vs.positive = std::move(*raw);
     else vs.positive = masked_votes(view.frame, mask, o.threads);
     vs.neutral = ViewVotes{};
+    const std::vector<uint32_t> shown = vs.positive.index;  // before the gates move some to neutral
     // The clicked pixels' rendered depths: where the target is in this view.
     BackgroundTarget target;
     target.selection = selection;
@@ -430,12 +459,30 @@ RoundReport Session::run_round(State& next, const State& prev) {
       const Image bg = background_inverse_depth(mask, view.depth, view.alpha,
                                                 near * (1 - o.background_options.occluder_margin), o.background_options);
       vs.background_gaussians = gate_background(scene_, view.camera, bg, target, vs.positive, vs.neutral, o.background_options);
-      if (getenv("BGDEBUG")) { size_t est=0, m=0; for (size_t i=0;i<bg.data.size();++i){ est += bg.data[i]>0; m += mask.data[i]>0.5f;} fprintf(stderr, "view %zu mask %zu est %zu bg %zu pos %zu near %.3f layers %d gated %.2f\n", k, m, est, vs.background_gaussians, vs.positive.index.size(), near, vs.depth_layers, vs.gated_share); }
+    }
+    vs.whole_pixels = 0;
+    ViewVotes whole;
+    if (o.whole_neutral && vs.sam) {
+      // Only Gaussians wholly outside the mask: one it partly shows (a neighbour's edge
+      // blended into the mask's border) keeps the band's weight against it.
+      const Image band = whole_band(*vs.sam, vs.candidate, vs.sam_negative ? &vs.sam_negative->mask : nullptr,
+                                    o.max_whole_growth, o.min_granularity_score);
+      for (float v : band.data) vs.whole_pixels += v > 0.5f;
+      if (vs.whole_pixels > 0) {
+        const ViewVotes in_band = masked_votes(view.frame, band, o.threads);
+        size_t p = 0;
+        for (size_t i = 0; i < in_band.index.size(); ++i) {
+          while (p < shown.size() && shown[p] < in_band.index[i]) ++p;
+          if (p < shown.size() && shown[p] == in_band.index[i]) continue;
+          whole.index.push_back(in_band.index[i]);
+          whole.weight.push_back(in_band.weight[i]);
+        }
+      }
     }
     ViewVotes centred;
     if (o.centre_rule.enabled)
       centred = centred_votes(scene_, view.camera, mask, view.depth, vs.positive, view.all_votes);
-    acc.add(vs.positive, view.all_votes, +1, &vs.neutral, &centred);
+    acc.add(vs.positive, view.all_votes, +1, &vs.neutral, &centred, &whole);
     live.add_support(vs.positive.index);
     undecided = true;
     vs.status = ViewStatus::Accepted;
@@ -474,7 +521,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   auto inspect_and_vote = [&](int forced_first) {
     fresh = unjudged;
     acc = VoteAccumulator(scene_.size());
-    live.reset(scene_.size(), {o.tau, o.min_total_weight, o.centre_rule}, &excluded_);
+    live.reset(scene_.size(), {o.tau, o.min_total_weight, o.centre_rule, {o.whole_neutral, o.whole_min_share}}, &excluded_);
     first = true;
     undecided = false;
     rep.accepted = rep.dropped = 0;
@@ -636,7 +683,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
   if (o.coherence) {
     if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
     next.selection = eligible(coherent_selection(acc, scene_, *neighbours_, o.tau, o.min_total_weight,
-                                                 o.coherence_options, o.centre_rule, &live.strong(), &live.support()));
+                                                 o.coherence_options, o.centre_rule, &live.strong(), &live.support(),
+                                                 {o.whole_neutral, o.whole_min_share}));
   } else {
     next.selection = live.eligible();
   }

@@ -53,6 +53,15 @@ struct SessionOptions {
   // area, predicted IoU >= min_granularity_score) and keep the one most views accept.
   bool granularity_consensus = true;
   double granularity_growth = 1.5, min_granularity_score = 0.5;
+  // A view whose mask is a part of a larger candidate of its own (the back of a chair, and the
+  // whole chair) does not say whether the part or the whole is meant: what the larger
+  // candidates add around the mask (for Gaussians wholly outside it) is left open in that
+  // view rather than voted against, so the views that segment the whole can select it when
+  // they hold whole_min_share of its evidence (votes.h WholeRule; the vote no longer keeps
+  // only the intersection of the views' granularities). Candidates up to max_whole_growth
+  // times the mask's area and of predicted IoU >= min_granularity_score count.
+  bool whole_neutral = true;
+  double max_whole_growth = 6, whole_min_share = 0.3;
   // Views no click reached (point out of frame or hidden) are prompted from the selection
   // rendered in them (a box and an interior point, as SA3D does), for this many rounds.
   int selection_prompt_rounds = 2;
@@ -99,6 +108,7 @@ struct ViewState {
   int depth_layers = 0;                // depth layers the mask's content splits into
   double gated_share = 0;              // share of the mask's weight outside the target's layer
   size_t background_gaussians = 0;     // Gaussians of the mask made neutral as background seen through gaps
+  int whole_pixels = 0;                // pixels the larger candidates add around the mask (left open: part or whole?)
   bool inspected = false;              // overlap was measured (not for the clicked view, which votes first)
   ViewVotes positive;                  // P-votes of the mask (when accepted)
   ViewVotes neutral;                   // depth-gated weights that count neither way

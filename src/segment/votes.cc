@@ -40,19 +40,22 @@ ViewVotes masked_votes(const PreparedFrame& frame, const Image& mask, int thread
 }
 
 void VoteAccumulator::add(const ViewVotes& positive, const ViewVotes& total, int sign, const ViewVotes* neutral,
-                          const ViewVotes* centred) {
+                          const ViewVotes* centred, const ViewVotes* whole) {
   for (size_t k = 0; k < positive.index.size(); ++k) positive_[positive.index[k]] += sign * positive.weight[k];
   if (centred)
     for (size_t k = 0; k < centred->index.size(); ++k) centred_[centred->index[k]] += sign * centred->weight[k];
   for (size_t k = 0; k < total.index.size(); ++k) total_[total.index[k]] += sign * total.weight[k];
   if (neutral)
     for (size_t k = 0; k < neutral->index.size(); ++k) total_[neutral->index[k]] -= sign * neutral->weight[k];
+  if (whole)
+    for (size_t k = 0; k < whole->index.size(); ++k) whole_[whole->index[k]] += sign * whole->weight[k];
 }
 
-std::vector<bool> VoteAccumulator::select(double tau, double min_total, const CentreRule& centre) const {
+std::vector<bool> VoteAccumulator::select(double tau, double min_total, const CentreRule& centre,
+                                          const WholeRule& whole) const {
   std::vector<bool> sel(total_.size(), false);
   const int64_t fixed = min_fixed(min_total);
-  for (size_t j = 0; j < total_.size(); ++j) sel[j] = selects(j, tau, fixed, centre);
+  for (size_t j = 0; j < total_.size(); ++j) sel[j] = selects(j, tau, fixed, centre, whole);
   return sel;
 }
 

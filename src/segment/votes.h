@@ -46,26 +46,42 @@ struct CentreRule {
   double min_centred = 0.7; // ... when C/A exceeds this (the centre inside the masks of nearly every view)
 };
 
+// Part and whole (session.h, whole_neutral): a view whose mask is a part of one of its own
+// larger SAM candidates (the back of a chair, and the whole chair) leaves the rest of that
+// candidate open. Its weights there are W_j, neither for nor against. A Gaussian is also
+// selected when P/(A - W) exceeds tau and P/A exceeds min_share: the views that segment the
+// whole decide, provided they hold a sizeable share of its evidence (a neighbour that a
+// few masks spill onto does not).
+struct WholeRule {
+  bool enabled = false;
+  double min_share = 0.3;
+};
+
 // Dense sums, one per Gaussian, in zero pages that cost nothing until a view votes there
 // (core/zeroed_array.h): a round starts a fresh accumulator.
 class VoteAccumulator {
  public:
-  explicit VoteAccumulator(size_t gaussians = 0) : positive_(gaussians), total_(gaussians), centred_(gaussians) {}
+  explicit VoteAccumulator(size_t gaussians = 0)
+      : positive_(gaussians), total_(gaussians), centred_(gaussians), whole_(gaussians) {}
   size_t size() const { return total_.size(); }
   // sign = +1 adds a view, -1 removes it again. `neutral` (optional): weights of the
   // view's total that count neither way (depth-gated content of the mask). `centred`
-  // (optional): the view totals of the Gaussians whose centre lies inside the mask.
+  // (optional): the view totals of the Gaussians whose centre lies inside the mask. `whole`
+  // (optional): weights of the view's total left open between part and whole (WholeRule).
   void add(const ViewVotes& positive, const ViewVotes& total, int sign = 1, const ViewVotes* neutral = nullptr,
-           const ViewVotes* centred = nullptr);
+           const ViewVotes* centred = nullptr, const ViewVotes* whole = nullptr);
   // Gaussians whose positive share P/A exceeds tau (or, with the centre rule, tau_low when
   // their centre evidence C/A exceeds min_centred) and whose total weight A is at least
   // min_total (in pixel-weight units).
-  std::vector<bool> select(double tau, double min_total, const CentreRule& centre = {}) const;
+  // min_total (in pixel-weight units); with the whole rule, also those it selects.
+  std::vector<bool> select(double tau, double min_total, const CentreRule& centre = {},
+                           const WholeRule& whole = {}) const;
   // The same decision for one Gaussian j, with min_fixed = min_fixed(min_total).
-  bool selects(size_t j, double tau, int64_t min_fixed, const CentreRule& centre = {}) const {
+  bool selects(size_t j, double tau, int64_t min_fixed, const CentreRule& centre = {}, const WholeRule& whole = {}) const {
     if (!(total_[j] > 0 && total_[j] >= min_fixed)) return false;
     const double a = double(total_[j]), p = double(positive_[j]);
-    return p > tau * a || (centre.enabled && p > centre.tau_low * a && double(centred_[j]) > centre.min_centred * a);
+    return p > tau * a || (centre.enabled && p > centre.tau_low * a && double(centred_[j]) > centre.min_centred * a) ||
+           (whole.enabled && p > whole.min_share * a && p > tau * (a - double(whole_[j])));
   }
   static int64_t min_fixed(double min_total) { return int64_t(std::ceil(min_total * kVoteScale)); }
   // P/A per Gaussian (0 where A is 0).
@@ -73,12 +89,13 @@ class VoteAccumulator {
   const ZeroedArray<int64_t>& positive() const { return positive_; }
   const ZeroedArray<int64_t>& total() const { return total_; }
   const ZeroedArray<int64_t>& centred() const { return centred_; }
+  const ZeroedArray<int64_t>& whole() const { return whole_; }
   bool operator==(const VoteAccumulator& o) const {
-    return positive_ == o.positive_ && total_ == o.total_ && centred_ == o.centred_;
+    return positive_ == o.positive_ && total_ == o.total_ && centred_ == o.centred_ && whole_ == o.whole_;
   }
 
  private:
-  ZeroedArray<int64_t> positive_, total_, centred_;
+  ZeroedArray<int64_t> positive_, total_, centred_, whole_;
 };
 
 // The view totals (from `total`, ascending like `positive`) of the Gaussians of `positive`

@@ -129,5 +129,41 @@ TEST(Votes, CentreRuleTellsAnOutlineGaussianFromASpillingNeighbour) {
   EXPECT_TRUE(copy == VoteAccumulator(3));
 }
 
+TEST(Votes, WholeRuleLetsTheViewsThatSegmentTheWholeDecide) {
+  // Four views see Gaussian 0 (the seat of a chair) with weight 1 each. One segments the whole
+  // chair (P = 1); the others' masks are the chair's back, and in two of them the seat lies
+  // in a larger candidate of their own (left open, W = 1 each); the last votes against it.
+  const int64_t one = kVoteScale;
+  auto votes = [](int64_t w) {
+    ViewVotes v;
+    v.index = {0};
+    v.weight = {w};
+    return v;
+  };
+  VoteAccumulator acc(1);
+  const ViewVotes none, w1 = votes(one);
+  acc.add(w1, w1);                      // segments the whole
+  acc.add(none, w1, 1, nullptr, nullptr, &w1);  // back only, the whole a candidate
+  acc.add(none, w1, 1, nullptr, nullptr, &w1);
+  acc.add(none, w1);                    // back only, no candidate holds the seat
+  const int64_t min_fixed = VoteAccumulator::min_fixed(0.05);
+  EXPECT_FALSE(acc.selects(0, 0.8, min_fixed));  // P/A = 0.25: the intersection of the views
+  WholeRule whole{true, 0.2};
+  // P/(A - W) = 1/2: the view that votes against still outweighs.
+  EXPECT_FALSE(acc.selects(0, 0.8, min_fixed, {}, whole));
+  VoteAccumulator two(1);  // two views segment the whole, two leave it open
+  two.add(w1, w1);
+  two.add(w1, w1);
+  two.add(none, w1, 1, nullptr, nullptr, &w1);
+  two.add(none, w1, 1, nullptr, nullptr, &w1);
+  EXPECT_FALSE(two.selects(0, 0.8, min_fixed));     // P/A = 0.5
+  EXPECT_TRUE(two.selects(0, 0.8, min_fixed, {}, whole));  // P/(A - W) = 1, P/A = 0.5 > 0.2
+  EXPECT_FALSE(two.selects(0, 0.8, min_fixed, {}, {true, 0.6}));  // not a sizeable enough share
+  // Removing a view again is exact, W included.
+  two.add(none, w1, -1, nullptr, nullptr, &w1);
+  two.add(none, w1, 1, nullptr, nullptr, &w1);
+  EXPECT_EQ(two.whole()[0], 2 * one);
+}
+
 }  // namespace
 }  // namespace isegman::segment
