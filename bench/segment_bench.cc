@@ -86,12 +86,7 @@ void BM_Interaction(benchmark::State& state) {
   Fixture* f = fixture(state);
   if (!f) return;
   segment::SessionOptions so;
-  if (state.range(0) == 0) {
-    so.depth_layers = so.agreement_inspection = so.choose_candidate = so.negative_regions = false;
-    so.selection_prompt_rounds = 0;
-    so.see_through = so.coherence = so.centre_rule.enabled = so.background_gate = false;
-    so.propagation.hidden_fallback = true;
-  }
+  if (state.range(0) == 0) so = segment::paper_pipeline(so);
   if (state.range(0) == 2) so.background_gate = false;
   f->session->set_options(so);
   segment::RoundReport last;

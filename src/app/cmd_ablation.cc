@@ -53,12 +53,7 @@ int run_eval_ablation(const Args& args) {
   auto sam = load_sam(setup);
   std::vector<EvalConfig> configs = {
       {"all additions (default)", [](segment::SessionOptions&) {}},
-      {"paper: hybrid + overlap IIM", [](segment::SessionOptions& o) {
-         o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
-         o.selection_prompt_rounds = 0;
-         o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = o.granularity_consensus = o.whole_neutral = false;
-         o.propagation.hidden_fallback = true;
-       }},
+      {"paper: hybrid + overlap IIM", [](segment::SessionOptions& o) { o = segment::paper_pipeline(o); }},
       {"- depth layers", [](segment::SessionOptions& o) { o.depth_layers = false; }},
       {"- local depth layers", [](segment::SessionOptions& o) { o.layer_options.region = 0; }},
       {"- Gaussian depth extents", [](segment::SessionOptions& o) { o.layer_options.extent_sigmas = 0; }},

@@ -69,14 +69,7 @@ Outcome run(const std::string& name, const SessionOptions& so, std::vector<Click
   return o;
 }
 
-SessionOptions paper() {
-  SessionOptions o;
-  o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
-  o.granularity_consensus = o.whole_neutral = false;
-  o.selection_prompt_rounds = 0;
-  o.propagation.hidden_fallback = true;
-  return o;
-}
+SessionOptions paper() { return paper_pipeline(); }
 
 TEST(HardCases, FoliageInFrontOfAWallDoesNotSelectTheWallSeenThroughItsGaps) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";

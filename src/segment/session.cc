@@ -23,9 +23,24 @@ const char* status_name(ViewStatus s) {
   return "?";
 }
 
+SessionOptions paper_pipeline(SessionOptions o) {
+  o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
+  o.granularity_consensus = o.whole_neutral = false;
+  o.selection_prompt_rounds = 0;
+  o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
+  o.propagation.hidden_fallback = true;
+  return o;
+}
+
 namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+size_t mask_area(const Image& m) {
+  size_t n = 0;
+  for (float v : m.data) n += v > 0.5f;
+  return n;
+}
 
 Image mask_image(const std::vector<uint8_t>& m, int w, int h) {
   Image img(w, h, 1);
@@ -214,17 +229,12 @@ int choose(const models::SegmentResult& r, const Image* coverage, int min_pixels
 Image whole_band(const models::SegmentResult& r, int c, const Image* cut, double max_growth, double min_score) {
   if (r.candidates.size() < 2) return {};
   const Image& m = r.candidates[size_t(c)];
-  auto area = [](const Image& x) {
-    size_t n = 0;
-    for (float v : x.data) n += v > 0.5f;
-    return n;
-  };
-  const size_t a = area(m);
+  const size_t a = mask_area(m);
   Image band;
   for (size_t o = 0; o < r.candidates.size(); ++o) {
     const Image& w = r.candidates[o];
     if (int(o) == c || r.candidate_scores[o] < min_score || w.data.size() != m.data.size()) continue;
-    const size_t wa = area(w);
+    const size_t wa = mask_area(w);
     if (wa <= a || double(wa) > max_growth * double(a)) continue;
     size_t inside = 0;
     for (size_t i = 0; i < m.data.size(); ++i) inside += m.data[i] > 0.5f && w.data[i] > 0.5f;
@@ -603,17 +613,12 @@ RoundReport Session::run_round(State& next, const State& prev) {
     }
     const models::SegmentResult& r = *results[first_view];
     if (r.candidates.size() > 1 && larger >= 2 && larger > rep.accepted - 1) {
-      auto area = [](const Image& m) {
-        size_t n = 0;
-        for (float v : m.data) n += v > 0.5f;
-        return n;
-      };
       const int used = fresh[first_view].candidate;
-      const size_t used_area = area(r.candidates[size_t(used)]);
+      const size_t used_area = mask_area(r.candidates[size_t(used)]);
       int best = -1, best_accepted = rep.accepted, last = -1;
       for (size_t c = 0; c < r.candidates.size(); ++c) {
         if (int(c) == used || r.candidate_scores[c] < o.min_granularity_score ||
-            double(area(r.candidates[c])) < o.granularity_growth * double(used_area))
+            double(mask_area(r.candidates[c])) < o.granularity_growth * double(used_area))
           continue;
         inspect_and_vote(int(c));
         last = int(c);

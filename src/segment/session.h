@@ -84,6 +84,10 @@ struct SessionOptions {
   ViewOptions see_through_views;  // how those renders are made and encoded (cache, threads)
 };
 
+// The paper's pipeline alone: every addition above switched off (hybrid propagation with
+// the paper's search of a hidden click's whole epipolar line, overlap inspection).
+SessionOptions paper_pipeline(SessionOptions base = {});
+
 struct UserClick {
   int view = 0;
   Click click;
