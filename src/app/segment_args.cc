@@ -35,6 +35,8 @@ const char* const kSegmentOptionsHelp =
     "                                the rest of that candidate (the vote keeps the intersection)\n"
     "  --selection-prompts N         rounds prompting views no click reached (default 2, 0 = off)\n"
     "  --hidden-fallback             send a hidden click along the whole epipolar line\n"
+    "  --no-depth-agreement          search features around a click's reprojection even where the\n"
+    "                                view's depth there agrees with the clicked point's\n"
     "  --sam-negatives               give negative clicks to SAM instead of cutting their region\n"
     "  --photos                      segment the source photos instead of renders\n"
     "  --max-side N                  working resolution cap (default 1024)\n"
@@ -50,7 +52,7 @@ const std::set<std::string>& segment_value_flags() {
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate",
-                                          "candidate-choice", "no-granularity-consensus", "no-whole-neutral", "hidden-fallback",
+                                          "candidate-choice", "no-granularity-consensus", "no-whole-neutral", "hidden-fallback", "no-depth-agreement",
                                           "sam-negatives"};
   return f;
 }
@@ -84,6 +86,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.granularity_consensus = !args.has("no-granularity-consensus");
   s.session.whole_neutral = !args.has("no-whole-neutral");
   s.session.propagation.hidden_fallback = args.has("hidden-fallback");
+  if (args.has("no-depth-agreement")) s.session.propagation.depth_agreement = 0;
   s.session.negative_regions = !args.has("sam-negatives");
   s.session.selection_prompt_rounds = args.get_int("selection-prompts", 2);
   if (s.session.selection_prompt_rounds < 0 || s.session.selection_prompt_rounds > 10)

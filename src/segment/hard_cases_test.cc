@@ -168,5 +168,26 @@ TEST(HardCases, ACompoundObjectIsSelectedWholeWhereViewsDisagreeOnThePart) {
   EXPECT_GT(ours.iou, without.iou + 0.2);
 }
 
+TEST(HardCases, AClickOnAThinPoleStaysOnItWhereTheDepthAgrees) {
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // A pole a few pixels wide: the feature search around the reprojection picks the wall's
+  // cell beside it, SAM segments the wall and inspection drops the view. Where the target's
+  // rendered depth agrees with the clicked point's, the reprojection is the click.
+  const Outcome ours = run("patio/pole", SessionOptions(), {}, true);
+  SessionOptions search;
+  search.propagation.depth_agreement = 0;
+  const Outcome without = run("patio/pole", search, {}, true);
+  auto accepted_clicked = [](const Outcome& o) {
+    int n = 0;
+    for (const ViewState& v : o.session->view_states()) n += v.status == ViewStatus::Accepted && !v.from_selection;
+    return n;
+  };
+  std::printf("[ hard ] patio/pole: %d clicked views accepted, IoU %.1f%%; with the feature search everywhere %d, "
+              "IoU %.1f%%\n",
+              accepted_clicked(ours), 100 * ours.iou, accepted_clicked(without), 100 * without.iou);
+  EXPECT_GE(accepted_clicked(ours), accepted_clicked(without) + 2);
+  EXPECT_GT(ours.iou, 0.85);
+}
+
 }  // namespace
 }  // namespace isegman::segment

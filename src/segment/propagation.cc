@@ -73,7 +73,9 @@ Propagated propagate(const SegmentView& from, const Click& click, const SegmentV
       // does, and let inspection drop the view if the match lands on something else.
       have_point = false;
     }
-    if (have_point && opt.mode == PropagationMode::Depth) {
+    const bool consistent = have_point && opt.depth_agreement > 0 && to.alpha.at(x, y) >= opt.min_alpha &&
+                            std::abs(z - surface) <= opt.depth_agreement * surface;
+    if (have_point && (opt.mode == PropagationMode::Depth || consistent)) {
       out.sent = true;
       out.click.x = pu;
       out.click.y = pv;

@@ -28,6 +28,11 @@ struct PropagationOptions {
   // there (the view may still be prompted from the 3D selection); true searches the whole
   // epipolar line as the paper does, which often lands on the occluder.
   bool hidden_fallback = false;
+  // Hybrid: where the target view's rendered depth at the reprojection agrees with the
+  // point's own depth (within this share), that pixel shows the clicked surface point and
+  // the feature search is skipped: a 64x64 feature cell is wider than a thin pole, and its
+  // best match moves the click onto the wall beside it. 0: always search.
+  double depth_agreement = 0.02;
 };
 
 struct Propagated {

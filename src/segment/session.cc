@@ -29,6 +29,7 @@ SessionOptions paper_pipeline(SessionOptions o) {
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
   o.propagation.hidden_fallback = true;
+  o.propagation.depth_agreement = 0;
   return o;
 }
 
