@@ -18,8 +18,8 @@
 #include "app/hard_scenes.h"
 #include "app/segment_args.h"
 #include "core/error.h"
-#include "io/scene_loader.h"
 #include "io/atomic_file.h"
+#include "io/scene_loader.h"
 #include "io/image_io.h"
 #include "segment/evaluation.h"
 #include "segment/overlay.h"
@@ -40,6 +40,18 @@ struct EvalConfig {
   std::string label;
   std::function<void(segment::SessionOptions&)> apply;
 };
+
+// One word per view status, for the per-view table beside the overlays.
+const char* status_word(segment::ViewStatus s) {
+  switch (s) {
+    case segment::ViewStatus::Accepted: return "accepted";
+    case segment::ViewStatus::NoClicks: return "no-click";
+    case segment::ViewStatus::EmptyMask: return "empty";
+    case segment::ViewStatus::NoOverlap: return "dropped";
+    case segment::ViewStatus::Skipped: return "skipped";
+  }
+  return "?";
+}
 
 int run_eval_ablation(const Args& args) {
   EvalSetOptions opt;
@@ -158,17 +170,16 @@ int run_eval_ablation(const Args& args) {
     namespace fs = std::filesystem;
     const fs::path dir = fs::path(overlays) / name;
     fs::create_directories(dir);
-    std::string table = "view status candidate sam_score mask_px overlap selection_inside iou prompted depth_layers background\n";
+    std::string table = "view status candidate sam_score mask_px overlap selection_inside iou prompted depth_layers background whole_px\n";
     for (size_t k = 0; k < session.views().size(); ++k) {
       const segment::ViewState& v = session.view_states()[k];
       write_png((dir / (session.views()[k].name + ".png")).string(),
                 segment::make_overlay(session.views()[k].rgb, v, session.selection_coverage(int(k))));
       char line[256];
-      std::snprintf(line, sizeof line, "%s %s %d %.3f %d %.3f %.3f %.3f %d %d %zu\n", session.views()[k].name.c_str(),
-                    v.status == segment::ViewStatus::Accepted ? "accepted" : v.status == segment::ViewStatus::NoClicks ? "no-click"
-                    : v.status == segment::ViewStatus::NoOverlap ? "dropped" : v.status == segment::ViewStatus::EmptyMask ? "empty" : "skipped",
+      std::snprintf(line, sizeof line, "%s %s %d %.3f %d %.3f %.3f %.3f %d %d %zu %d\n", session.views()[k].name.c_str(),
+                    status_word(v.status),
                     v.candidate, v.sam_score, v.mask_pixels, v.overlap, v.selection_inside, v.iou, int(v.from_selection),
-                    v.depth_layers, v.background_gaussians);
+                    v.depth_layers, v.background_gaussians, v.whole_pixels);
       table += line;
     }
     write_file_atomic((dir / "views.txt").string(), table);  // the per-view evidence as figures

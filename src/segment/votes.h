@@ -72,7 +72,6 @@ class VoteAccumulator {
            const ViewVotes* centred = nullptr, const ViewVotes* whole = nullptr);
   // Gaussians whose positive share P/A exceeds tau (or, with the centre rule, tau_low when
   // their centre evidence C/A exceeds min_centred) and whose total weight A is at least
-  // min_total (in pixel-weight units).
   // min_total (in pixel-weight units); with the whole rule, also those it selects.
   std::vector<bool> select(double tau, double min_total, const CentreRule& centre = {},
                            const WholeRule& whole = {}) const;
