@@ -9,6 +9,7 @@
 #include "io/format_test_util.h"
 #include "io/ply.h"
 #include "io/scene_loader.h"
+#include "io/sog.h"
 
 namespace fs = std::filesystem;
 
@@ -84,6 +85,26 @@ TEST(GaussianFile, SceneDirectoriesAndBareSplatFilesLoadWithVirtualViews) {
   EXPECT_FALSE(notes.empty());
   opt.virtual_views_when_missing = false;
   EXPECT_THROW(load_scene((d / "bare.spz").string(), opt), Error);
+  fs::remove_all(d);
+}
+
+TEST(GaussianFile, ACaptureFolderWithNotesIsNotTakenForSogAndNamesItsSceneBelow) {
+  // A capture's folder as the fixtures lay it out: meta.json (the trainer's notes), scene/.
+  const fs::path d = temp_dir();
+  write_scene_dir((d / "scene").string(), plausible_scene(50, 0, 3), {});
+  write_file_atomic((d / "meta.json").string(), std::string(R"({"trainer":"opensplat","train_psnr":29.4})"));
+  EXPECT_FALSE(is_sog_dir(d.string()));
+  try {
+    load_scene(d.string());
+    ADD_FAILURE() << "loaded a folder without a point cloud";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find("SOG"), std::string::npos) << what;
+    EXPECT_NE(what.find("one level down: " + (d / "scene").string()), std::string::npos) << what;
+  }
+  // SOG's own meta.json (it has "means") still makes the folder a SOG folder.
+  write_file_atomic((d / "meta.json").string(), std::string(R"({"version":2,"means":{}})"));
+  EXPECT_TRUE(is_sog_dir(d.string()));
   fs::remove_all(d);
 }
 

@@ -35,7 +35,16 @@ std::string find_scene_ply(const std::string& dir) {
   }
   if (best >= 0) return best_path.string();
   if (fs::is_regular_file(root / "point_cloud.ply", ec)) return (root / "point_cloud.ply").string();
-  throw Error(dir, "no point_cloud/iteration_<N>/point_cloud.ply or point_cloud.ply in this scene directory");
+  // A folder that holds the scene one level down (a capture's folder with scene/ and
+  // images/): name it rather than leave the user to guess.
+  std::string below;
+  for (const auto& entry : fs::directory_iterator(root, ec)) {
+    if (!entry.is_directory(ec)) continue;
+    if (fs::is_directory(entry.path() / "point_cloud", ec) || fs::is_regular_file(entry.path() / "point_cloud.ply", ec))
+      below += (below.empty() ? "" : ", ") + entry.path().string();
+  }
+  throw Error(dir, "no point_cloud/iteration_<N>/point_cloud.ply or point_cloud.ply in this scene directory" +
+                       (below.empty() ? std::string() : "; a scene lies one level down: " + below));
 }
 
 namespace {

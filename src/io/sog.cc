@@ -195,7 +195,17 @@ std::vector<uint8_t> zip_member(zip_t* z, const std::string& name, const std::st
 
 bool is_sog_dir(const std::string& path) {
   std::error_code ec;
-  return fs::is_directory(path, ec) && fs::is_regular_file(fs::path(path) / "meta.json", ec);
+  const fs::path meta = fs::path(path) / "meta.json";
+  if (!fs::is_directory(path, ec) || !fs::is_regular_file(meta, ec)) return false;
+  // A trained scene's folder may hold a meta.json of its own (a trainer's notes, as the
+  // fixtures do): it is SOG only without a point_cloud and when its meta.json is SOG's
+  // (it has "means"). One that does not parse is left to the SOG reader to report.
+  if (fs::exists(fs::path(path) / "point_cloud", ec)) return false;
+  const uintmax_t size = fs::file_size(meta, ec);
+  if (ec || size > (64u << 20)) return true;
+  const std::vector<uint8_t> bytes = read_file_bytes(meta.string());
+  const json j = json::parse(bytes.begin(), bytes.end(), nullptr, false);
+  return j.is_discarded() || !j.is_object() || j.contains("means");
 }
 
 bool looks_like_zip(const uint8_t* data, size_t size) {

@@ -19,7 +19,8 @@
 
 namespace isegman {
 
-// True when `path` is a folder with a meta.json, or the bytes are a zip archive.
+// True when `path` is a folder with SOG's meta.json (not a trained scene's folder with notes
+// of its own), or the bytes are a zip archive.
 bool is_sog_dir(const std::string& path);
 bool looks_like_zip(const uint8_t* data, size_t size);
 
