@@ -1,7 +1,10 @@
 #include "segment/background_gate.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+
+#include "core/random.h"
 
 namespace isegman::segment {
 
@@ -10,6 +13,9 @@ namespace {
 struct Estimates {
   std::vector<float> sum, lo, hi;
   std::vector<uint8_t> count;
+  // Every usable sample at a run's end, nearer than the target or not: (pixel, inverse
+  // depth), the ring the surroundings' plane is fitted to.
+  std::vector<std::pair<uint32_t, float>> ring;
 };
 
 // One line of pixels (in order along the direction): every run of mask pixels gets the
@@ -27,8 +33,8 @@ void interpolate_line(const std::vector<uint32_t>& line, const Image& mask, cons
   // The inverse depth of line pixel i as a background sample, or 0 when it cannot serve:
   // the surface must go on smoothly for 2 x `extent` pixels further out (a surface, not a
   // thin bar in front of one: the rail of a screen whose one slat is the mask).
-  auto sample = [&](size_t i, long outward) -> float {
-    const float v = inverse(long(i), near_limit);
+  auto sample = [&](size_t i, long outward, double limit) -> float {
+    const float v = inverse(long(i), limit);
     if (o.extent <= 0 || v <= 0) return v;
     // The continuation only shows the surface goes on: a floor seen at a grazing angle comes
     // nearer than the target's near side a few pixels on, and is still the floor.
@@ -50,7 +56,12 @@ void interpolate_line(const std::vector<uint32_t>& line, const Image& mask, cons
     bool ok = a >= 0 && b < long(n) && long(j - i) + 2 * o.skip + 2 <= max_span;
     for (long k = a; ok && k < long(i); ++k) ok = !inside(size_t(k));
     for (long k = long(j); ok && k <= b; ++k) ok = !inside(size_t(k));
-    const float s0 = ok ? sample(size_t(a), -1) : 0.f, s1 = ok ? sample(size_t(b), +1) : 0.f;
+    const float s0 = ok ? sample(size_t(a), -1, near_limit) : 0.f, s1 = ok ? sample(size_t(b), +1, near_limit) : 0.f;
+    if (ok && o.plane) {
+      const float r0 = s0 > 0 ? s0 : sample(size_t(a), -1, 0), r1 = s1 > 0 ? s1 : sample(size_t(b), +1, 0);
+      if (r0 > 0) e.ring.push_back({line[size_t(a)], r0});
+      if (r1 > 0) e.ring.push_back({line[size_t(b)], r1});
+    }
     if (s0 > 0 && s1 > 0) {
       const double span = double(b - a);
       for (size_t k = i; k < j; ++k) {
@@ -112,6 +123,86 @@ bool crosses_surface(const GaussianScene& scene, const Camera& camera, const Ima
   return std::abs(dot(n_surface, n_gaussian)) < min_alignment;
 }
 
+// A plane's inverse depth is affine in the pixel: 1/z = a x + b y + c.
+struct InversePlane {
+  double a = 0, b = 0, c = 0;
+  double at(double x, double y) const { return a * x + b * y + c; }
+};
+
+// Least squares over the given samples; false when they do not span a plane.
+bool fit_plane(const std::vector<std::array<double, 3>>& pts, InversePlane& plane) {
+  double m[3][4] = {};
+  for (const auto& p : pts) {
+    const double r[3] = {p[0], p[1], 1.0};
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) m[i][j] += r[i] * r[j];
+      m[i][3] += r[i] * p[2];
+    }
+  }
+  for (int col = 0; col < 3; ++col) {  // Gauss-Jordan with partial pivoting
+    int piv = col;
+    for (int r = col + 1; r < 3; ++r)
+      if (std::abs(m[r][col]) > std::abs(m[piv][col])) piv = r;
+    if (std::abs(m[piv][col]) < 1e-12) return false;
+    std::swap(m[piv], m[col]);
+    for (int r = 0; r < 3; ++r) {
+      if (r == col) continue;
+      const double f = m[r][col] / m[col][col];
+      for (int k = col; k < 4; ++k) m[r][k] -= f * m[col][k];
+    }
+  }
+  plane = {m[0][3] / m[0][0], m[1][3] / m[1][1], m[2][3] / m[2][2]};
+  return true;
+}
+
+// The plane most of the ring lies on (RANSAC over sample triples, then refitted to its
+// inliers), when that is at least `min_share` of the ring and its inliers lie on three or
+// more sides of the mask (around its centre): a floor or a wall the object stands before,
+// not one side's surface extrapolated across the object.
+bool surroundings_plane(const std::vector<std::pair<uint32_t, float>>& ring, int width, double cx, double cy,
+                        const BackgroundOptions& o, InversePlane& plane) {
+  if (ring.size() < 16) return false;
+  std::vector<std::array<double, 3>> pts(ring.size());
+  for (size_t i = 0; i < ring.size(); ++i)
+    pts[i] = {double(ring[i].first % uint32_t(width)) + 0.5, double(ring[i].first / uint32_t(width)) + 0.5,
+              double(ring[i].second)};
+  auto inliers = [&](const InversePlane& pl, std::vector<std::array<double, 3>>* out) {
+    size_t count = 0;
+    for (const auto& p : pts)
+      if (std::abs(pl.at(p[0], p[1]) - p[2]) <= o.agreement * p[2]) {
+        ++count;
+        if (out) out->push_back(p);
+      }
+    return count;
+  };
+  SplitMix64 rng(0x5EEDull + ring.size());
+  InversePlane best;
+  size_t best_count = 0;
+  for (int it = 0; it < o.plane_trials; ++it) {
+    std::vector<std::array<double, 3>> triple;
+    for (int k = 0; k < 3; ++k) triple.push_back(pts[size_t(rng.next() % pts.size())]);
+    InversePlane pl;
+    if (!fit_plane(triple, pl)) continue;
+    const size_t count = inliers(pl, nullptr);
+    if (count > best_count) best_count = count, best = pl;
+  }
+  if (double(best_count) < o.plane_min_share * double(pts.size())) return false;
+  std::vector<std::array<double, 3>> in;
+  inliers(best, &in);
+  if (!fit_plane(in, plane)) return false;
+  in.clear();
+  if (double(inliers(plane, &in)) < o.plane_min_share * double(pts.size())) return false;
+  int sides = 0;  // left, right, above, below the mask's centre: a side holds 1/12 of the inliers
+  size_t left = 0, right = 0, above = 0, below = 0;
+  for (const auto& p : in) {
+    const double dx = p[0] - cx, dy = p[1] - cy;
+    if (std::abs(dx) >= std::abs(dy)) ++(dx < 0 ? left : right);
+    else ++(dy < 0 ? above : below);
+  }
+  for (size_t n : {left, right, above, below}) sides += 12 * n >= in.size() ? 1 : 0;
+  return sides >= 3;
+}
+
 }  // namespace
 
 double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVotes& votes, double share) {
@@ -140,7 +231,7 @@ Image background_inverse_depth(const Image& mask, const Image& depth, const Imag
   if (w == 0 || h == 0 || depth.data.size() != npx || alpha.data.size() != npx) return out;
   const int max_span = o.max_span > 0 ? o.max_span : std::max(w, h) * 2;
   Estimates e{std::vector<float>(npx, 0.f), std::vector<float>(npx, 1e30f), std::vector<float>(npx, -1e30f),
-              std::vector<uint8_t>(npx, 0)};
+              std::vector<uint8_t>(npx, 0), {}};
   // Only the mask's bounding box, widened by the farthest pixel a sample reads, matters:
   // lines are walked within it (the same result as over the whole image, for less work).
   int bx0 = w, by0 = h, bx1 = -1, by1 = -1;
@@ -171,6 +262,24 @@ Image background_inverse_depth(const Image& mask, const Image& depth, const Imag
     if (e.count[p] < o.min_directions) continue;
     const float mean = e.sum[p] / float(e.count[p]);
     if (e.hi[p] - e.lo[p] <= o.agreement * mean) out.data[p] = mean;
+  }
+  // Where the lines give no estimate (a ring's hole: its lines cross the near floor in front
+  // of it, which is nearer than the target), the plane the surroundings lie on, when they
+  // lie on one, beyond the target's near side.
+  InversePlane plane;
+  double cx = 0, cy = 0, area = 0;
+  for (int y = by0; y <= by1; ++y)
+    for (int x = bx0; x <= bx1; ++x)
+      if (mask.at(x, y) > 0.5f) cx += x + 0.5, cy += y + 0.5, area += 1;
+  if (o.plane && area > 0 && surroundings_plane(e.ring, w, cx / area, cy / area, o, plane)) {
+    const double far_inverse = near_limit > 0 ? 1.0 / near_limit : 1e30;
+    for (int y = by0; y <= by1; ++y)
+      for (int x = bx0; x <= bx1; ++x) {
+        const size_t p = size_t(y) * size_t(w) + size_t(x);
+        if (mask.data[p] <= 0.5f || out.data[p] > 0) continue;
+        const double v = plane.at(x + 0.5, y + 0.5);
+        if (v > 0 && v <= far_inverse) out.data[p] = float(v);
+      }
   }
   return out;
 }

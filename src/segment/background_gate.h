@@ -34,6 +34,11 @@ struct BackgroundOptions {
   double min_alignment = 0.8;
   double seed_radius = 3;     // pixels around a click whose Gaussians are the target
   double occluder_margin = 0.03;  // outside pixels nearer than the target's near depth less this share are occluders
+  // Mask pixels no line estimates take the plane the samples around the mask lie on, where
+  // at least plane_min_share of them do (RANSAC, plane_trials triples) on three of its sides.
+  bool plane = true;
+  double plane_min_share = 0.5;
+  int plane_trials = 200;
 };
 
 // The camera depth below which `share` of the votes' weight lies: the target's near side in

@@ -120,6 +120,63 @@ struct GateScene {
   }
 };
 
+TEST(BackgroundGate, ARingsHoleTakesThePlaneTheSurroundingsLieOn) {
+  // A ring lying on a floor, seen from above at a slant: the floor's inverse depth grows
+  // downwards, and below the mask it is nearer than the ring's near side, so the column
+  // and both diagonals through the hole end on refused samples and the rows alone do not
+  // make the two lines an estimate needs. The floor around the mask lies on one plane.
+  PlaneView v;
+  auto inv = [](double x, double y) { return 0.2 + 0.0002 * x + 0.002 * y; };
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      if (v.mask.at(x, y) < 0.5f) v.depth.at(x, y) = float(1.0 / inv(x + 0.5, y + 0.5));
+  const double limit = 1.0 / inv(32, 32);  // the ring's near side: the floor at the hole's depth
+  BackgroundOptions lines_only;
+  lines_only.plane = false;
+  const Image before = background_inverse_depth(v.mask, v.depth, v.alpha, limit, lines_only);
+  const Image after = background_inverse_depth(v.mask, v.depth, v.alpha, limit);
+  int lines = 0, plane = 0;
+  for (int y = 24; y < 40; ++y)
+    for (int x = 24; x < 40; ++x) {
+      lines += before.at(x, y) > 0;
+      if (after.at(x, y) <= 0) continue;
+      ++plane;
+      EXPECT_NEAR(after.at(x, y), inv(x + 0.5, y + 0.5), 1e-5 * inv(x + 0.5, y + 0.5)) << x << "," << y;
+      EXPECT_LE(after.at(x, y), 1.0 / limit * (1 + 1e-6));  // never nearer than the target's near side
+    }
+  std::printf("[ ring's hole ] %d of 256 mask pixels estimated by the lines, %d with the plane\n", lines, plane);
+  EXPECT_LT(lines, 64);
+  EXPECT_GE(plane, 120);  // the mask's far half, behind the near side
+  EXPECT_GT(after.at(32, 26), 0.f);
+  EXPECT_EQ(after.at(32, 38), 0.f);  // nearer than the ring's near side: no background there
+
+  // Surroundings on no one plane (a clutter of depths): no plane, nothing added.
+  PlaneView clutter;
+  uint32_t h = 12345;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      if (clutter.mask.at(x, y) < 0.5f) {
+        h = h * 1664525u + 1013904223u;
+        clutter.depth.at(x, y) = 4.0f + float(h >> 8) / float(1 << 24) * 4.0f;
+      }
+  const Image none = background_inverse_depth(clutter.mask, clutter.depth, clutter.alpha, 2.0);
+  for (float b : none.data) EXPECT_EQ(b, 0.f);
+
+  // The plane on two sides only (left and above; clutter right and below) is not
+  // extrapolated across the mask, however few samples the plane needs.
+  PlaneView side = clutter;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      if (side.mask.at(x, y) < 0.5f && (x < 24 || y < 24)) side.depth.at(x, y) = float(1.0 / inv(x + 0.5, y + 0.5));
+  BackgroundOptions any_share;
+  any_share.plane_min_share = 0.01;
+  const Image two_sides = background_inverse_depth(side.mask, side.depth, side.alpha, 2.0, any_share);
+  int from_two_sides = 0;
+  for (int y = 24; y < 40; ++y)
+    for (int x = 24; x < 40; ++x) from_two_sides += two_sides.at(x, y) > 0 && x > 30 && y > 30;
+  EXPECT_EQ(from_two_sides, 0);
+}
+
 TEST(BackgroundGate, OnlyGaussiansLyingInTheSurroundingSurfaceBecomeNeutral) {
   GateScene s;
   s.add(-0.2, -0.2, 5.0, 0.05, 0.05, 0.002);  // 0: a flat piece of the wall seen through a gap
