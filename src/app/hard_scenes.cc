@@ -401,6 +401,128 @@ EvalScene patio(const EvalSetOptions& opt) {
   return s;
 }
 
+// Forward-facing handheld capture of a study, as LLFF scenes are taken (a 5 x 4 grid of
+// nearly parallel cameras): a picture hanging flat on the wall, a row of books standing
+// side by side, a mug with a handle on a desk, a hanging plant in front of a window whose
+// far view shows through its leaves, and a floor lamp (thin stem, shade) at the frame's edge.
+EvalScene study(const EvalSetOptions& opt) {
+  EvalScene s;
+  s.name = "study";
+  DemoScene& demo = s.scene;
+  GaussianScene& g = demo.bundle.gaussians;
+  g.sh_degree = 3;
+  SplitMix64 rng(41);
+  SceneBuilder b{g, demo.labels, rng, 3};
+  const double d = opt.density, sz = 1 / std::sqrt(d);
+  const double wall_y = 2.4;
+  const double win_x0 = 0.7, win_x1 = 1.7, win_z0 = 1.0, win_z1 = 2.0;
+  for (int i = 0, n = int(9000 * d); i < n; ++i) {  // papered wall with a window opening
+    Vec3 p{rng.range(-2.6, 2.8), wall_y, rng.range(0, 2.7)};
+    if (p.x > win_x0 && p.x < win_x1 && p.z > win_z0 && p.z < win_z1) continue;
+    const bool stripe = std::fmod(p.x + 10, 0.2) < 0.1;
+    b.splat(p, {0, -1, 0}, 0.05 * sz, stripe ? Vec3{0.80, 0.76, 0.66} : Vec3{0.74, 0.70, 0.62}, -1, 0.02);
+  }
+  for (double x = win_x0 - 0.04; x < win_x1 + 0.04; x += 0.02)  // the window frame
+    for (double z : {win_z0 - 0.02, win_z1 + 0.02, (win_z0 + win_z1) / 2})
+      b.strip({x, wall_y - 0.01, z}, {0, -1, 0}, {1, 0, 0}, 0.02, 0.04, {0.95, 0.95, 0.93}, -1, 0.02);
+  for (double z = win_z0; z < win_z1; z += 0.02)
+    for (double x : {win_x0 - 0.02, win_x1 + 0.02, (win_x0 + win_x1) / 2})
+      b.strip({x, wall_y - 0.01, z}, {0, -1, 0}, {0, 0, 1}, 0.02, 0.04, {0.95, 0.95, 0.93}, -1, 0.02);
+  for (int i = 0, n = int(2500 * d); i < n; ++i) {  // the view outside: trees and sky, 6 m away
+    Vec3 p{rng.range(-1.5, 4.5), 8.0, rng.range(-0.5, 4.5)};
+    const double tree = 0.5 + 0.5 * std::sin(p.x * 3.1) * std::cos(p.z * 2.3);
+    const Vec3 c = p.z < 1.6 + tree ? Vec3{0.25, 0.45, 0.20} + Vec3{0.1, 0.1, 0.05} * cell_noise(int(p.x * 4), int(p.z * 4))
+                                     : Vec3{0.70, 0.82, 0.95};
+    b.splat(p, {0, -1, 0}, 0.14 * sz, c, -1, 0.0);
+  }
+  for (int i = 0, n = int(7000 * d); i < n; ++i) {  // carpet
+    Vec3 p{rng.range(-2.6, 2.8), rng.range(-1.2, wall_y), 0};
+    b.splat(p, {0, 0, 1}, 0.05 * sz, Vec3{0.36, 0.30, 0.34} + Vec3{1, 1, 1} * (0.05 * cell_noise(int(p.x * 8), int(p.y * 8))), -1, 0.01);
+  }
+  // A picture hanging flat on the wall: a canvas 1 cm in front of it inside a dark frame.
+  const int picture = add_object(demo, "picture", {-0.55, wall_y - 0.01, 1.55}, 0.4f);
+  for (int i = 0, n = int(1600 * d); i < n; ++i) {
+    const double x = rng.range(-0.9, -0.2), z = rng.range(1.3, 1.8);
+    const bool frame = x < -0.86 || x > -0.24 || z < 1.34 || z > 1.76;
+    const Vec3 c = frame ? Vec3{0.20, 0.13, 0.08}
+                         : Vec3{0.55 + 0.4 * cell_noise(int(x * 9), 1), 0.45 + 0.4 * cell_noise(int(z * 9), 2), 0.6};
+    b.splat({x, wall_y - 0.01, z}, {0, -1, 0}, 0.025 * sz, c, picture, 0.03);
+  }
+  // A low shelf against the wall holding a row of books standing side by side.
+  const Vec3 shelf_c{-1.25, wall_y - 0.25, 0};
+  box(b, shelf_c + Vec3{0, 0, 0.2}, 0.24, 0.2, int(1500 * d), 0.03 * sz, {0.55, 0.40, 0.26}, {0.45, 0.32, 0.2}, -1);
+  const Vec3 book_colours[] = {{0.15, 0.25, 0.55}, {0.62, 0.12, 0.12}, {0.15, 0.25, 0.55}, {0.20, 0.45, 0.25},
+                               {0.60, 0.55, 0.20}, {0.15, 0.25, 0.55}};
+  int book = -1;
+  for (int k = 0; k < 6; ++k) {
+    const double x0 = shelf_c.x - 0.21 + k * 0.07, height = 0.26 + 0.04 * ((k * 7) % 3);
+    const int label = k == 1 ? add_object(demo, "book", {x0 + 0.033, shelf_c.y, 0.4 + height / 2}, 0.2f) : -1;
+    if (k == 1) book = label;
+    for (int i = 0, n = int(300 * d); i < n; ++i) {  // spine (facing the cameras), top, sides
+      const int face = int(rng.uniform() * 4);
+      Vec3 p, nrm;
+      if (face <= 1) p = {rng.range(x0, x0 + 0.066), shelf_c.y - 0.1, 0.4 + rng.range(0, height)}, nrm = {0, -1, 0};
+      else if (face == 2) p = {rng.range(x0, x0 + 0.066), shelf_c.y + rng.range(-0.1, 0.1), 0.4 + height}, nrm = {0, 0, 1};
+      else p = {x0 + (rng.uniform() < 0.5 ? 0.0 : 0.066), shelf_c.y + rng.range(-0.1, 0.1), 0.4 + rng.range(0, height)},
+           nrm = {p.x > x0 ? 1.0 : -1.0, 0, 0};
+      const Vec3 c = std::fmod(p.z, 0.1) < 0.012 ? book_colours[k] * 1.6 : book_colours[k];
+      b.splat(p, nrm, 0.014 * sz, c, label >= 0 ? label : -1, 0.03);
+    }
+  }
+  // A desk (top and four legs) with a mug on it.
+  const Vec3 desk_c{0.2, 1.6, 0};
+  box(b, desk_c + Vec3{0, 0, 0.74}, 0.5, 0.02, int(2200 * d), 0.03 * sz, {0.30, 0.22, 0.16}, {0.30, 0.22, 0.16}, -1);
+  for (double lx : {-0.46, 0.46})
+    for (double ly : {-0.3, 0.3})
+      cylinder(b, desk_c + Vec3{lx, ly * 0.9, 0}, 0.025, 0.025, 0.72, int(150 * d) + 40, 0.015 * sz, {0.2, 0.2, 0.2}, -1, false);
+  const Vec3 mug_c = desk_c + Vec3{0.25, -0.2, 0.76};
+  const int mug = add_object(demo, "mug", mug_c + Vec3{0, 0, 0.05}, 0.1f);
+  cylinder(b, mug_c, 0.04, 0.04, 0.1, int(500 * std::max(d, 0.5)), 0.012 * sz, {0.85, 0.35, 0.15}, mug, true);
+  for (int i = 0; i < 36; ++i) {  // the handle: a half ring beside the mug
+    const double a = -M_PI / 2 + M_PI * i / 35;
+    const Vec3 p = mug_c + Vec3{0.04 + 0.03 * std::cos(a), 0, 0.05 + 0.03 * std::sin(a)};
+    b.strip(p, {0, -1, 0}, {-std::sin(a), 0, std::cos(a)}, 0.01, 0.012, {0.85, 0.35, 0.15}, mug, 0.03);
+  }
+  // A hanging plant in front of the window: a pot on three cords, trailing leaves.
+  const Vec3 hang_c{1.2, wall_y - 0.45, 1.75};
+  const int hanging = add_object(demo, "hanging_plant", hang_c + Vec3{0, 0, -0.15}, 0.5f);
+  cylinder(b, hang_c, 0.09, 0.12, 0.16, int(700 * d), 0.02 * sz, {0.82, 0.80, 0.74}, hanging, false);
+  for (int cord = 0; cord < 3; ++cord) {
+    const double a = cord * 2 * M_PI / 3;
+    const Vec3 from = hang_c + Vec3{0.11 * std::cos(a), 0.11 * std::sin(a), 0.16}, to = hang_c + Vec3{0, 0, 0.75};
+    for (double t = 0; t < 1; t += 0.02)
+      b.strip(from + (to - from) * t, {0, -1, 0}, normalized(to - from), 0.02, 0.006, {0.6, 0.55, 0.45}, hanging, 0.01);
+  }
+  for (int leaf = 0, n = int(70 * std::max(1.0, d)); leaf < n; ++leaf) {
+    const double a = rng.range(0, 2 * M_PI), r = rng.range(0.08, 0.3), drop = rng.range(-0.55, 0.1);
+    const Vec3 c = hang_c + Vec3{r * std::cos(a), 0.6 * r * std::sin(a), 0.12 + drop};
+    const Vec3 dir = normalized(Vec3{rng.normal() * 0.4, rng.normal() * 0.2, -1});
+    const Vec3 nrm = normalized(Vec3{rng.normal() * 0.5, -1, rng.normal() * 0.3});
+    const Vec3 col{rng.range(0.12, 0.25), rng.range(0.40, 0.60), rng.range(0.12, 0.22)};
+    for (int k = -1; k <= 1; ++k) b.strip(c + dir * (k * 0.025), nrm, dir, 0.024, 0.018, col, hanging, 0.04);
+  }
+  // A floor lamp at the right: a round base, a thin stem, a conical shade.
+  const Vec3 lamp_c{1.45, 1.2, 0};
+  const int lamp = add_object(demo, "floor_lamp", lamp_c + Vec3{0, 0, 0.9}, 1.0f);
+  cylinder(b, lamp_c, 0.16, 0.14, 0.03, int(500 * d), 0.02 * sz, {0.15, 0.15, 0.15}, lamp, true);
+  cylinder(b, lamp_c + Vec3{0, 0, 0.03}, 0.012, 0.012, 1.45, int(700 * d), 0.01 * sz, {0.15, 0.15, 0.15}, lamp, false);
+  cylinder(b, lamp_c + Vec3{0, 0, 1.4}, 0.22, 0.12, 0.28, int(1200 * d), 0.025 * sz, {0.92, 0.86, 0.70}, lamp, false);
+  // The capture: a 5 x 4 grid of cameras 3.4 m from the wall, all looking nearly straight ahead.
+  int id = 0;
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 5; ++col) {
+      const Vec3 eye{0.25 + (col - 2) * 0.22, -1.0, 1.15 + (row - 1.5) * 0.16};
+      const Vec3 target{0.25 + (col - 2) * 0.08, wall_y, 1.1 + (row - 1.5) * 0.05};
+      demo.bundle.cameras.push_back(named(Camera::look_at(eye, target, {0, 0, 1}, opt.width, opt.height, 62.0), id++, "grid"));
+    }
+  add_task(s, "picture", "flat object hanging on a wall", picture, {-0.5, wall_y - 0.01, 1.6}, 7);
+  add_task(s, "book", "one of a row of touching objects", book, {shelf_c.x - 0.14 + 0.033, shelf_c.y - 0.1, 0.55}, 12);
+  add_task(s, "mug", "small object with a handle", mug, mug_c + Vec3{0, -0.04, 0.05}, 2);
+  add_task(s, "hanging_plant", "sparse leaves in front of a window", hanging, hang_c + Vec3{0, -0.12, 0.08}, 17);
+  add_task(s, "floor_lamp", "thin stem under a shade at the frame edge", lamp, lamp_c + Vec3{0, -0.2, 1.55}, 9);
+  return s;
+}
+
 EvalScene orbit_demo(const EvalSetOptions& opt) {
   EvalScene s;
   s.name = "orbit";
@@ -465,6 +587,7 @@ std::vector<EvalScene> make_eval_scenes(const EvalSetOptions& opt) {
   out.push_back(courtyard(opt, true));
   out.push_back(orbit_demo(opt));
   out.push_back(patio(opt));
+  out.push_back(study(opt));
   return out;
 }
 
