@@ -10,11 +10,6 @@
 namespace isegman {
 namespace {
 
-Vec3 jitter(SplitMix64& rng, const Vec3& c, double amount) {
-  return {std::clamp(c.x + rng.normal() * amount, 0.0, 1.0), std::clamp(c.y + rng.normal() * amount, 0.0, 1.0),
-          std::clamp(c.z + rng.normal() * amount, 0.0, 1.0)};
-}
-
 // A stable per-cell colour variation (bricks, planks, tiles).
 double cell_noise(int a, int b) {
   uint32_t h = uint32_t(a * 73856093) ^ uint32_t(b * 19349663);
