@@ -682,8 +682,14 @@ RoundReport Session::run_round(State& next, const State& prev) {
     }
     if (!accepted) break;
   }
-  for (const ViewState& vs : fresh)
+  for (ViewState& vs : fresh) {
     if (vs.from_selection && vs.status == ViewStatus::NoOverlap) ++rep.dropped;
+    // The accumulator holds what the view's votes added; the lists themselves (a dozen bytes
+    // per Gaussian in the mask, every view, every state the undo history keeps) are not read
+    // again: the next round votes from scratch.
+    vs.positive = ViewVotes{};
+    vs.neutral = ViewVotes{};
+  }
   next.views = std::move(fresh);
   decide();
   if (o.coherence) {

@@ -114,8 +114,10 @@ struct ViewState {
   size_t background_gaussians = 0;     // Gaussians of the mask made neutral as background seen through gaps
   int whole_pixels = 0;                // pixels the larger candidates add around the mask (left open: part or whole?)
   bool inspected = false;              // overlap was measured (not for the clicked view, which votes first)
-  ViewVotes positive;                  // P-votes of the mask (when accepted)
-  ViewVotes neutral;                   // depth-gated weights that count neither way
+  // While the round votes: P-votes of the mask (when accepted) and the depth-gated weights
+  // that count neither way; released when the round ends (the accumulator keeps their sums).
+  ViewVotes positive;
+  ViewVotes neutral;
   std::shared_ptr<const models::SegmentResult> sam;  // SAM's answer (every candidate), shared with history
   std::shared_ptr<const models::SegmentResult> sam_negative;  // the region of the negative clicks, cut from the mask
 };
