@@ -461,7 +461,7 @@ EvalScene study(const EvalSetOptions& opt) {
       else p = {x0 + (rng.uniform() < 0.5 ? 0.0 : 0.066), shelf_c.y + rng.range(-0.1, 0.1), 0.4 + rng.range(0, height)},
            nrm = {p.x > x0 ? 1.0 : -1.0, 0, 0};
       const Vec3 c = std::fmod(p.z, 0.1) < 0.012 ? book_colours[k] * 1.6 : book_colours[k];
-      b.splat(p, nrm, 0.014 * sz, c, label >= 0 ? label : -1, 0.03);
+      b.splat(p, nrm, 0.014 * sz, c, label, 0.03);
     }
   }
   // A desk (top and four legs) with a mug on it.
