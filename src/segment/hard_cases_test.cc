@@ -71,6 +71,15 @@ Outcome run(const std::string& name, const SessionOptions& so, std::vector<Click
 
 SessionOptions paper() { return paper_pipeline(); }
 
+// How many of the outcome's views `holds` is true for.
+template <class Pred>
+int count_views(const Outcome& o, Pred holds) {
+  int n = 0;
+  for (const ViewState& v : o.session->view_states()) n += holds(v) ? 1 : 0;
+  return n;
+}
+bool accepted(const ViewState& v) { return v.status == ViewStatus::Accepted; }
+
 TEST(HardCases, FoliageInFrontOfAWallDoesNotSelectTheWallSeenThroughItsGaps) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   const Outcome ours = run("garden/bush", SessionOptions());
@@ -91,8 +100,7 @@ TEST(HardCases, ViewsNoClickReachesArePromptedFromTheSelection) {
   // A pillar taller than the frame, clicked near its top: that point is out of most views.
   const Outcome ours = run("courtyard/pillar", SessionOptions());
   const Outcome old = run("courtyard/pillar", paper());
-  int prompted = 0;
-  for (const ViewState& v : ours.session->view_states()) prompted += v.from_selection && v.status == ViewStatus::Accepted;
+  const int prompted = count_views(ours, [](const ViewState& v) { return accepted(v) && v.from_selection; });
   std::printf("[ hard ] courtyard/pillar: IoU %.1f%% (%d views prompted from the selection); paper pipeline %.1f%%\n",
               100 * ours.iou, prompted, 100 * old.iou);
   EXPECT_GT(prompted, 3);
@@ -141,14 +149,12 @@ TEST(HardCases, AClickOnOneSlatSelectsTheScreenMostViewsSegment) {
   fixed.granularity_consensus = false;
   const Outcome without = run("alcove/screen", fixed);
   const ViewState& clicked = ours.session->view_states()[size_t(ours.session->clicks().back().view)];
-  int accepted = 0, accepted_without = 0;
-  for (const ViewState& v : ours.session->view_states()) accepted += v.status == ViewStatus::Accepted;
-  for (const ViewState& v : without.session->view_states()) accepted_without += v.status == ViewStatus::Accepted;
+  const int accepted_ours = count_views(ours, accepted), accepted_without = count_views(without, accepted);
   std::printf("[ hard ] alcove/screen: IoU %.1f%% (clicked view voted with candidate %d, %d views accepted); keeping "
               "SAM's choice %.1f%% (%d views accepted)\n",
-              100 * ours.iou, clicked.candidate, accepted, 100 * without.iou, accepted_without);
+              100 * ours.iou, clicked.candidate, accepted_ours, 100 * without.iou, accepted_without);
   EXPECT_NE(clicked.candidate, clicked.sam->mask_index);
-  EXPECT_GT(accepted, accepted_without);
+  EXPECT_GT(accepted_ours, accepted_without);
   EXPECT_GT(ours.iou, without.iou + 0.2);
 }
 
@@ -160,8 +166,7 @@ TEST(HardCases, ACompoundObjectIsSelectedWholeWhereViewsDisagreeOnThePart) {
   SessionOptions intersection;
   intersection.whole_neutral = false;
   const Outcome without = run("patio/chair", intersection, {}, true);
-  int open = 0;
-  for (const ViewState& v : ours.session->view_states()) open += v.status == ViewStatus::Accepted && v.whole_pixels > 0;
+  const int open = count_views(ours, [](const ViewState& v) { return accepted(v) && v.whole_pixels > 0; });
   std::printf("[ hard ] patio/chair: IoU %.1f%% (%d views left part or whole open); votes against the rest %.1f%%\n",
               100 * ours.iou, open, 100 * without.iou);
   EXPECT_GT(open, 3);
@@ -178,9 +183,7 @@ TEST(HardCases, AClickOnAThinPoleStaysOnItWhereTheDepthAgrees) {
   search.propagation.depth_agreement = 0;
   const Outcome without = run("patio/pole", search, {}, true);
   auto accepted_clicked = [](const Outcome& o) {
-    int n = 0;
-    for (const ViewState& v : o.session->view_states()) n += v.status == ViewStatus::Accepted && !v.from_selection;
-    return n;
+    return count_views(o, [](const ViewState& v) { return accepted(v) && !v.from_selection; });
   };
   std::printf("[ hard ] patio/pole: %d clicked views accepted, IoU %.1f%%; with the feature search everywhere %d, "
               "IoU %.1f%%\n",
