@@ -234,12 +234,15 @@ Image background_inverse_depth(const Image& mask, const Image& depth, const Imag
               std::vector<uint8_t>(npx, 0), {}};
   // Only the mask's bounding box, widened by the farthest pixel a sample reads, matters:
   // lines are walked within it (the same result as over the whole image, for less work).
+  // The same pass gives the mask's centre, around which the plane's sides are counted.
   int bx0 = w, by0 = h, bx1 = -1, by1 = -1;
+  double cx = 0, cy = 0, area = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
       if (mask.at(x, y) > 0.5f) {
         bx0 = std::min(bx0, x), by0 = std::min(by0, y);
         bx1 = std::max(bx1, x), by1 = std::max(by1, y);
+        cx += x + 0.5, cy += y + 0.5, area += 1;
       }
   if (bx1 < 0) return out;
   const int reach = 1 + o.skip + 2 * std::max(0, o.extent);
@@ -267,10 +270,6 @@ Image background_inverse_depth(const Image& mask, const Image& depth, const Imag
   // of it, which is nearer than the target), the plane the surroundings lie on, when they
   // lie on one, beyond the target's near side.
   InversePlane plane;
-  double cx = 0, cy = 0, area = 0;
-  for (int y = by0; y <= by1; ++y)
-    for (int x = bx0; x <= bx1; ++x)
-      if (mask.at(x, y) > 0.5f) cx += x + 0.5, cy += y + 0.5, area += 1;
   if (o.plane && area > 0 && surroundings_plane(e.ring, w, cx / area, cy / area, o, plane)) {
     const double far_inverse = near_limit > 0 ? 1.0 / near_limit : 1e30;
     for (int y = by0; y <= by1; ++y)
