@@ -36,14 +36,23 @@ std::vector<uint8_t> pack_splats(const GaussianScene& scene, uint64_t fingerprin
   const size_t n = scene.size();
   const int k = scene.coeffs();
   const uint32_t degree = uint32_t(scene.sh_degree), rest = uint32_t(3 * (k - 1));
-  std::vector<uint8_t> out(kSceneBinaryHeaderBytes + n * kSplatRecordBytes +
+  std::vector<uint8_t> out(kSceneBinaryHeaderBytes + n * kSplatRecordBytes + kColourRangeBytes +
                            (degree > 0 ? kShScalesBytes + n * rest : 0));
-  put_header(out, "ISGS", 2, uint32_t(n), kSplatRecordBytes, fingerprint, uint64_t(degree) | uint64_t(rest) << 32);
+  put_header(out, "ISGS", 3, uint32_t(n), kSplatRecordBytes, fingerprint, uint64_t(degree) | uint64_t(rest) << 32);
+  auto base = [&](size_t i, int c) { return 0.5 + kShC0 * double(scene.sh[i * size_t(k) * 3 + size_t(c)]); };
+  double lo = 0, hi = 1;
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c)
+      if (const double v = base(i, c); std::isfinite(v)) {
+        if (degree > 0) lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+  lo = double(float(std::max(lo, double(kColourLow))));  // as the page reads them
+  hi = double(float(std::min(hi, double(kColourHigh))));
   size_t at = kSceneBinaryHeaderBytes;
   for (size_t i = 0; i < n; ++i) {
     for (int c = 0; c < 3; ++c) put<float>(out, at, scene.positions[3 * i + c]);
-    const float* dc = scene.sh.data() + i * size_t(k) * 3;  // coefficient 0, channels r g b
-    for (int c = 0; c < 3; ++c) out[at++] = unit_byte(0.5 + kShC0 * dc[c]);
+    for (int c = 0; c < 3; ++c) out[at++] = unit_byte((base(i, c) - lo) / (hi - lo));
     out[at++] = unit_byte(scene.activated_opacity(i));
     // Sigma = M M^T with M = R S (the 3DGS computeCov3D).
     const Mat3 r = scene.rotation(i).to_matrix();
@@ -59,6 +68,8 @@ std::vector<uint8_t> pack_splats(const GaussianScene& scene, uint64_t fingerprin
     put<float>(out, at, float(cov(1, 2)));
     put<float>(out, at, float(cov(2, 2)));
   }
+  put<float>(out, at, float(lo));
+  put<float>(out, at, float(hi));
   if (degree == 0) return out;
   // Band b holds coefficients b^2 .. (b+1)^2 - 1.
   float scale[4] = {0, 0, 0, 0};

@@ -2,13 +2,18 @@
 // Little-endian, fixed records, so the page uploads them without parsing.
 //
 // Splats (`pack_splats`): a 32-byte header
-//   "ISGS" | u32 version (2) | u32 count | u32 record bytes (40) | u64 fingerprint |
+//   "ISGS" | u32 version (3) | u32 count | u32 record bytes (40) | u64 fingerprint |
 //   u32 SH degree d | u32 SH bytes per Gaussian (3 ((d+1)^2 - 1))
 // then per Gaussian, 40 bytes:
 //   f32 x, y, z | u8 r, g, b, a | f32 covariance xx, xy, xz, yy, yz, zz
-// Colour is the SH DC term as the rasteriser evaluates it (0.5 + C0 * dc, clamped to
-// [0, 1]), alpha the activated opacity; the covariance is R S S^T R^T of the normalised
-// rotation and the exponentiated scales, in world units.
+// then 8 bytes: f32 lo, hi, the range of the colour bytes.
+// Colour is the SH DC term as the rasteriser evaluates it (0.5 + C0 * dc), each byte q
+// standing for lo + (hi - lo) q / 255; alpha the activated opacity; the covariance is
+// R S S^T R^T of the normalised rotation and the exponentiated scales, in world units.
+// The rasteriser clamps a Gaussian's colour at 0 only, after adding every SH degree, and
+// blends colours above 1: so hi is the scene's largest base colour (at least 1, at most
+// kColourHigh), and lo 0 without SH or the smallest base colour with it (at least
+// kColourLow), where view-dependent terms may bring a negative base colour back up.
 // When d > 0, the view-dependent rest follows: 16 bytes of f32 band scales s1, s2, s3, 0,
 // then per Gaussian its coefficients 1 .. (d+1)^2 - 1, each as r, g, b (core/sh.h's order),
 // one byte each: q = round(127 c / s_band) + 128, so c = (q - 128) s_band / 127; s_band is
@@ -31,6 +36,9 @@ namespace isegman::server {
 constexpr uint32_t kSplatRecordBytes = 40;
 constexpr uint32_t kSceneBinaryHeaderBytes = 32;
 constexpr uint32_t kShScalesBytes = 16;
+constexpr uint32_t kColourRangeBytes = 8;
+// Bounds of the colour bytes' range (a wider range costs every colour precision).
+constexpr float kColourLow = -1.f, kColourHigh = 2.f;
 
 std::vector<uint8_t> pack_splats(const GaussianScene& scene, uint64_t fingerprint);
 

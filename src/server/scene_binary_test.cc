@@ -34,9 +34,9 @@ GaussianScene two_gaussians() {
 TEST(SceneBinary, SplatsCarryPositionColourOpacityAndCovariance) {
   const std::vector<uint8_t> b = pack_splats(two_gaussians(), 0x1122334455667788ull);
   // Degree 1: 9 rest coefficients (3 per channel) per Gaussian after the band scales.
-  ASSERT_EQ(b.size(), kSceneBinaryHeaderBytes + 2 * kSplatRecordBytes + kShScalesBytes + 2 * 9);
+  ASSERT_EQ(b.size(), kSceneBinaryHeaderBytes + 2 * kSplatRecordBytes + kColourRangeBytes + kShScalesBytes + 2 * 9);
   EXPECT_EQ(std::string(b.begin(), b.begin() + 4), "ISGS");
-  EXPECT_EQ(read_at<uint32_t>(b, 4), 2u);
+  EXPECT_EQ(read_at<uint32_t>(b, 4), 3u);
   EXPECT_EQ(read_at<uint32_t>(b, 8), 2u);
   EXPECT_EQ(read_at<uint32_t>(b, 12), kSplatRecordBytes);
   EXPECT_EQ(read_at<uint64_t>(b, 16), 0x1122334455667788ull);
@@ -47,8 +47,13 @@ TEST(SceneBinary, SplatsCarryPositionColourOpacityAndCovariance) {
   EXPECT_EQ(read_at<float>(b, r0), 1.f);
   EXPECT_EQ(read_at<float>(b, r0 + 8), 3.f);
   EXPECT_EQ(read_at<float>(b, r1 + 4), 5.5f);
-  EXPECT_EQ(b[r0 + 12], 128);  // 0.5 * 255 rounded
-  EXPECT_EQ(b[r0 + 13], 191);  // 0.75
+  // With SH the colour bytes span the base colours' range: [0.5 - 2 C0, 1] here.
+  const double lo = 0.5 - 2 * 0.28209479177387814, span = 1 - lo;
+  const size_t range = kSceneBinaryHeaderBytes + 2 * kSplatRecordBytes;
+  EXPECT_NEAR(read_at<float>(b, range), lo, 1e-6);
+  EXPECT_EQ(read_at<float>(b, range + 4), 1.f);
+  EXPECT_EQ(b[r0 + 12], std::lround((0.5 - lo) / span * 255));
+  EXPECT_EQ(b[r0 + 13], std::lround((0.75 - lo) / span * 255));
   EXPECT_EQ(b[r0 + 14], 0);
   EXPECT_EQ(b[r0 + 15], 128);  // opacity sigmoid(0)
   EXPECT_EQ(b[r1 + 15], 255);
@@ -64,7 +69,8 @@ TEST(SceneBinary, ShRestIsQuantisedPerBand) {
   g.sh_of(0)[4] = -4.5f;  // coefficient 1, green: half of the band's largest magnitude
   g.sh_of(1)[8] = 1.f;    // coefficient 2, blue
   const std::vector<uint8_t> b = pack_splats(g, 1);
-  const size_t scales = kSceneBinaryHeaderBytes + 2 * kSplatRecordBytes, rest = scales + kShScalesBytes;
+  const size_t scales = kSceneBinaryHeaderBytes + 2 * kSplatRecordBytes + kColourRangeBytes,
+               rest = scales + kShScalesBytes;
   EXPECT_EQ(read_at<float>(b, scales), 9.f);  // band 1: the largest |c|
   EXPECT_EQ(read_at<float>(b, scales + 4), 0.f);
   // Gaussian 0: coefficient 1 r = 9 -> 255, g = -4.5 -> 128 - 64 (127 * 0.5 rounded), the rest 0 -> 128.
@@ -75,7 +81,37 @@ TEST(SceneBinary, ShRestIsQuantisedPerBand) {
   // Degree 0: no SH section.
   GaussianScene flat;
   flat.resize(1, 0);
-  EXPECT_EQ(pack_splats(flat, 1).size(), kSceneBinaryHeaderBytes + kSplatRecordBytes);
+  EXPECT_EQ(pack_splats(flat, 1).size(), kSceneBinaryHeaderBytes + kSplatRecordBytes + kColourRangeBytes);
+}
+
+// The rasteriser clamps a colour at 0 only, after adding every SH degree, and blends
+// colours above 1: the colour bytes span the scene's base colours, negative ones only
+// where SH may bring them back up.
+TEST(SceneBinary, ColourBytesSpanTheBaseColoursTheRasteriserUses) {
+  const float c0 = 0.28209479177387814f;
+  GaussianScene g = two_gaussians();
+  g.sh_of(1)[0] = 1.f / c0;  // red 1.5
+  g.sh_of(1)[1] = 9.f / c0;  // green 9.5: beyond the range the page is sent
+  const std::vector<uint8_t> b = pack_splats(g, 1);
+  const size_t range = kSceneBinaryHeaderBytes + 2 * kSplatRecordBytes;
+  const float lo = read_at<float>(b, range), hi = read_at<float>(b, range + 4);
+  EXPECT_LT(lo, 0.f);
+  EXPECT_EQ(hi, kColourHigh);
+  const size_t r1 = kSceneBinaryHeaderBytes + kSplatRecordBytes;
+  EXPECT_NEAR(lo + (hi - lo) * b[r1 + 12] / 255.0, 1.5, (hi - lo) / 510.0 + 1e-6);
+  EXPECT_EQ(b[r1 + 13], 255);
+
+  // Without SH a negative colour is 0 in every direction; one above 1 still counts.
+  GaussianScene flat;
+  flat.resize(1, 0);
+  flat.sh_of(0)[0] = 0.7f / c0;
+  flat.sh_of(0)[1] = -1.f / c0;
+  const std::vector<uint8_t> f = pack_splats(flat, 1);
+  const size_t flat_range = kSceneBinaryHeaderBytes + kSplatRecordBytes;
+  EXPECT_EQ(read_at<float>(f, flat_range), 0.f);
+  EXPECT_FLOAT_EQ(read_at<float>(f, flat_range + 4), 1.2f);
+  EXPECT_EQ(f[kSceneBinaryHeaderBytes + 12], 255);
+  EXPECT_EQ(f[kSceneBinaryHeaderBytes + 13], 0);
 }
 
 TEST(SceneBinary, SelectionBytesFlagSelectedAndHidden) {

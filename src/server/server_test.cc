@@ -265,7 +265,7 @@ TEST(ServerApi, SplatsMaskDisplayAndPick) {
   };
   const std::string splats = get("/api/splats");
   ASSERT_EQ(d.bundle.gaussians.sh_degree, 1);
-  ASSERT_EQ(splats.size(), 32 + 40 * n + 16 + 9 * n);  // records, band scales, 9 SH bytes each
+  ASSERT_EQ(splats.size(), 32 + 40 * n + 8 + 16 + 9 * n);  // records, colour range, band scales, 9 SH bytes each
   EXPECT_EQ(splats.substr(0, 4), "ISGS");
   std::string mask = get("/api/selection/mask");
   ASSERT_EQ(mask.size(), 32 + n);

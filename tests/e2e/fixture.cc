@@ -3,7 +3,8 @@
 // pixel well inside it (where the test clicks) and its bounding box, from the scene's
 // ground-truth labels (render of the object's Gaussians, occlusion included).
 // Also the same scene with strong view-dependent colour (<out_dir>/sh_scene/: the SH
-// coefficients of degrees 1-3 times 15), for comparing the WebGL view's SH with the server's.
+// coefficients of degrees 1-3 times 15, every other Gaussian's base colour 0.25 brighter),
+// for comparing the WebGL view's SH with the server's.
 //   isegman_e2e_fixture <out_dir> [camera]  -> <out_dir>/scene/, <out_dir>/sh_scene/, <out_dir>/object.json
 #include <cmath>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/demo_scene.h"
+#include "core/sh.h"
 #include "io/atomic_file.h"
 #include "io/scene_loader.h"
 #include "render/rasterizer.h"
@@ -37,8 +39,13 @@ int main(int argc, char** argv) {
   {
     GaussianScene shiny = g;
     const int k = shiny.coeffs();
-    for (size_t i = 0; i < shiny.size(); ++i)
+    for (size_t i = 0; i < shiny.size(); ++i) {
       for (int c = 3; c < 3 * k; ++c) shiny.sh_of(i)[c] *= 15.f;
+      // Every other Gaussian 0.25 brighter: base colours above 1 that the view-dependent
+      // terms bring back into range in some directions (clamped only as a sum).
+      if (i % 2)
+        for (int c = 0; c < 3; ++c) shiny.sh_of(i)[c] += 0.25f / kShC0;
+    }
     write_scene_dir((out / "sh_scene").string(), shiny, demo.bundle.cameras);
   }
 

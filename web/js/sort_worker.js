@@ -10,6 +10,10 @@ import { shBasisRest } from './sh.js';
 let positions = null;   // Float32Array, 3 per splat
 let importance = null;  // Uint32Array: splat indices, most important first
 let colors = null;      // Uint32Array: r | g << 8 | b << 16 | a << 24 (DC colour, opacity)
+// A colour byte q of `colors` is the base colour lo + span q / 255; drawn colours are bytes
+// over [0, hi] (the shaders scale them by hi: colours above 1 blend as in the rasteriser).
+let lo = 0, span = 1, hi = 1;
+let baseColors = null;  // the base colours as drawn without SH, when `colors` are not already
 let shRest = null;      // Int8Array: per splat (K - 1) x 3 quantised coefficients, or null
 let shDegree = 0, shCount = 0, shStride = 0;  // degree drawn, its rest coefficients, bytes per splat
 let sceneDegree = 0;
@@ -61,13 +65,14 @@ function sort({ rot, t, tanX, tanY, near, limit, id }) {
 // sum_k basis_k(d) c_k along d = centre - eye (world space, as the rasteriser), clamped.
 function shade(out, m, rot, t) {
   if (!shDegree) {
-    for (let k = 0; k < m; ++k) out[2 * k + 1] = colors[out[2 * k]];
+    const base = baseColors || colors;
+    for (let k = 0; k < m; ++k) out[2 * k + 1] = base[out[2 * k]];
     return;
   }
   const [r00, r01, r02, r10, r11, r12, r20, r21, r22] = rot;
   const ex = -(r00 * t[0] + r10 * t[1] + r20 * t[2]), ey = -(r01 * t[0] + r11 * t[1] + r21 * t[2]),
     ez = -(r02 * t[0] + r12 * t[1] + r22 * t[2]);
-  const K = shCount, stride = shStride;
+  const K = shCount, stride = shStride, step = span / 255, toByte = 1 / hi;
   for (let k = 0; k < m; ++k) {
     const i = out[2 * k];
     let dx = positions[3 * i] - ex, dy = positions[3 * i + 1] - ey, dz = positions[3 * i + 2] - ez;
@@ -76,12 +81,12 @@ function shade(out, m, rot, t) {
     shBasisRest(shDegree, dx, dy, dz, basis);
     for (let j = 0; j < K; ++j) weighted[j] = basis[j] * shScale[j];
     const c = colors[i];
-    let r = (c & 255) / 255, g = ((c >>> 8) & 255) / 255, b = ((c >>> 16) & 255) / 255;
+    let r = lo + step * (c & 255), g = lo + step * ((c >>> 8) & 255), b = lo + step * ((c >>> 16) & 255);
     for (let j = 0, s = i * stride; j < K; ++j, s += 3) {
       const w = weighted[j];
       r += w * shRest[s]; g += w * shRest[s + 1]; b += w * shRest[s + 2];
     }
-    out[2 * k + 1] = (byte(r) | (byte(g) << 8) | (byte(b) << 16) | (c & 0xff000000)) >>> 0;
+    out[2 * k + 1] = (byte(r * toByte) | (byte(g * toByte) << 8) | (byte(b * toByte) << 16) | (c & 0xff000000)) >>> 0;
   }
 }
 
@@ -93,6 +98,12 @@ onmessage = (e) => {
   const msg = e.data;
   if (msg.type === 'init') {
     positions = msg.positions; importance = msg.importance; colors = msg.colors; hidden = null;
+    [lo, hi] = msg.colourRange; span = hi - lo;
+    // Without SH a colour is max(base, 0): re-encoded over [0, hi] unless already so.
+    baseColors = lo === 0 ? null : colors.map((c) => {
+      const ch = (s) => byte((lo + span * ((c >>> s) & 255) / 255) / hi);
+      return (ch(0) | (ch(8) << 8) | (ch(16) << 16) | (c & 0xff000000)) >>> 0;
+    });
     // msg.shDegree: the scene's; msg.maxDegree: a cap (?sh=D), read as a prefix (as the rasteriser's sh_degree).
     shStride = 3 * ((msg.shDegree + 1) ** 2 - 1); shRest = msg.shRest; sceneDegree = msg.shDegree;
     capDegree(msg.maxDegree);

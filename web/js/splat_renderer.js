@@ -85,11 +85,12 @@ export class SplatRenderer {
     this.count = 0; this.drawCount = 0; this.camera = null; this.tint = 0.5; this.drawnSize = [0, 0];
     this.targets = {}; this.readback = null; this.pbo = null; this.pboBytes = 0;
     this.moving = false; this.level = 5; this.canvasDiv = LADDER[5][0]; this.window = null; this.moves = 0; this.fingerprint = null; this.maskRevision = -1;
-    this.frames = 0; this.lastFrame = 0; this.dirty = false; this.onDraw = null;
+    this.frames = 0; this.lastFrame = 0; this.colourScale = 1; this.dirty = false; this.onDraw = null;
     this.subsetWhileMoving = true;
     this.project = program(gl, projectVS(ROW), NOTHING_FS,
-      ['u_splats', 'u_mask', 'u_order', 'u_R', 'u_t', 'u_focal', 'u_size', 'u_tan', 'u_tint'], ['v_a', 'v_b']);
-    this.quads = program(gl, QUAD_VS, SPLAT_FS, ['u_proj', 'u_size']);
+      ['u_splats', 'u_mask', 'u_order', 'u_R', 'u_t', 'u_focal', 'u_size', 'u_tan', 'u_tint', 'u_colour_scale'],
+      ['v_a', 'v_b']);
+    this.quads = program(gl, QUAD_VS, SPLAT_FS, ['u_proj', 'u_size', 'u_colour_scale']);
     this.feedback = gl.createTransformFeedback();
     this.projBuf = gl.createBuffer();  // footprints, 32 bytes per drawn splat
     this.projTex = gl.createTexture();  // the same as a RGBA32F texture, 2 texels per splat
@@ -126,9 +127,13 @@ export class SplatRenderer {
     const buf = await res.arrayBuffer();
     const h = readHeader(buf, 'ISGS'), dv = new DataView(buf);
     const n = h.count, shDegree = dv.getUint32(24, true), shBytes = dv.getUint32(28, true);
-    const shAt = 32 + 40 * n;
-    if (dv.getUint32(4, true) !== 2 || h.third !== 40 || shDegree > 3 || shBytes !== 3 * ((shDegree + 1) ** 2 - 1) ||
+    const rangeAt = 32 + 40 * n, shAt = rangeAt + 8;
+    if (dv.getUint32(4, true) !== 3 || h.third !== 40 || shDegree > 3 || shBytes !== 3 * ((shDegree + 1) ** 2 - 1) ||
         buf.byteLength !== shAt + (shDegree ? 16 + shBytes * n : 0)) throw new Error('splats: unexpected record layout');
+    // The colour bytes' range [lo, hi]: base colours above 1 blend as such (as in the
+    // rasteriser), so the drawn colours are bytes over [0, hi] and the shaders scale by hi.
+    const colourRange = Array.from(new Float32Array(buf, rangeAt, 2));
+    this.colourScale = colourRange[1];
     const src = new Uint32Array(buf, 32, 10 * n), f = new Float32Array(buf, 32, 10 * n);
     const colors = new Uint32Array(n);
     // The SH rest as signed bytes (q - 128, the server's q = round(127 c / s) + 128).
@@ -157,7 +162,8 @@ export class SplatRenderer {
     this.count = n; this.drawCount = 0; this.fingerprint = h.a;
     this.setMaskBytes(new Uint8Array(n), -1);  // nothing selected until the mask arrives
     const transfer = [positions.buffer, importance.buffer, colors.buffer].concat(shRest ? [shRest.buffer] : []);
-    this.worker.postMessage({ type: 'init', positions, importance, colors, shDegree, maxDegree: this.maxShDegree, shRest, shScales },
+    this.worker.postMessage({ type: 'init', positions, importance, colors, colourRange, shDegree, maxDegree: this.maxShDegree, shRest,
+      shScales },
       transfer);
     this.firstSortOfScene = this.sortId + 1;  // earlier answers index the previous scene
     this.requestSort();
@@ -474,6 +480,7 @@ export class SplatRenderer {
     gl.uniform2f(L.u_size, c.width, c.height);
     gl.uniform2f(L.u_tan, c.width / (2 * c.fx), c.height / (2 * c.fy));
     gl.uniform1f(L.u_tint, this.tint);
+    gl.uniform1f(L.u_colour_scale, this.colourScale);
     gl.enable(gl.RASTERIZER_DISCARD);
     gl.bindTransformFeedback(gl.TRANSFORM_FEEDBACK, this.feedback);
     gl.bindBufferBase(gl.TRANSFORM_FEEDBACK_BUFFER, 0, this.projBuf);
@@ -495,6 +502,7 @@ export class SplatRenderer {
     gl.useProgram(Q.p);
     gl.uniform1i(Q.loc.u_proj, 3);
     gl.uniform2f(Q.loc.u_size, c.width, c.height);
+    gl.uniform1f(Q.loc.u_colour_scale, this.colourScale);
     gl.enable(gl.BLEND);
     gl.blendFunc(gl.ONE, gl.ONE_MINUS_SRC_ALPHA);
     gl.drawArrays(gl.TRIANGLES, 0, 6 * n);

@@ -14,12 +14,13 @@ export const PROJ_ROW = 1024;  // footprints per row of the footprint texture (2
 // clamped to 1.3x the half field of view), +0.3 px on the 2D covariance diagonal, the
 // ellipse cut where alpha falls below 1/255 (at most 3 sigma). Outputs (pixels):
 //   v_a = (centre x, y, axis 1 x, y), v_b = (axis 2 x, y, r + 256 g + 65536 b, 4 a + k)
-// with the colour in bytes (exact in a float) and k the cut in sigmas; v_b.w < 0: not drawn.
+// with the colour in bytes (exact in a float; bytes over [0, u_colour_scale]) and k the cut
+// in sigmas; v_b.w < 0: not drawn.
 export const projectVS = (splatRow) => `#version 300 es
 precision highp float; precision highp int; precision highp usampler2D;
 uniform usampler2D u_splats; uniform usampler2D u_mask; uniform usampler2D u_order;
 uniform mat3 u_R; uniform vec3 u_t; uniform vec2 u_focal; uniform vec2 u_size; uniform vec2 u_tan;
-uniform float u_tint;
+uniform float u_tint; uniform float u_colour_scale;
 out vec4 v_a; out vec4 v_b;
 void main() {
   gl_Position = vec4(0.0); gl_PointSize = 1.0;
@@ -50,7 +51,7 @@ void main() {
   float k = min(3.0, sqrt(2.0 * log(255.0 * float(rgba8.a) / 255.0)));
   vec2 px = vec2(u_focal.x * c.x * iz, u_focal.y * c.y * iz) + 0.5 * u_size;
   vec3 col = vec3(rgba8.rgb);
-  if ((flags & 1u) != 0u) col = floor(mix(col, vec3(255.0, 51.0, 204.0), u_tint) + 0.5);
+  if ((flags & 1u) != 0u) col = floor(mix(col, vec3(255.0, 51.0, 204.0) / u_colour_scale, u_tint) + 0.5);
   v_a = vec4(px, k * sqrt(l1) * e1);
   v_b = vec4(k * sqrt(l2) * e2, col.r + 256.0 * col.g + 65536.0 * col.b, 4.0 * float(rgba8.a) + k);
 }`;
@@ -63,7 +64,7 @@ precision mediump float; out vec4 o; void main() { discard; }`;
 // SwiftShader, which draws instances one by one); the splat is footprint gl_VertexID / 6.
 export const QUAD_VS = `#version 300 es
 precision highp float; precision highp int;
-uniform highp sampler2D u_proj; uniform vec2 u_size;
+uniform highp sampler2D u_proj; uniform vec2 u_size; uniform float u_colour_scale;
 out vec4 v_color; out vec2 v_pos;
 const vec2 CORNERS[6] = vec2[6](vec2(-1, -1), vec2(1, -1), vec2(-1, 1), vec2(-1, 1), vec2(1, -1), vec2(1, 1));
 void main() {
@@ -77,6 +78,7 @@ void main() {
   float alpha = floor(b.w * 0.25), k = b.w - 4.0 * alpha;
   float blue = floor(b.z / 65536.0), green = floor((b.z - 65536.0 * blue) / 256.0);
   v_color = vec4(b.z - 65536.0 * blue - 256.0 * green, green, blue, alpha) / 255.0;
+  v_color.rgb *= u_colour_scale;  // bytes over [0, hi]: colours above 1 blend as such
   v_pos = corner * k;
 }`;
 
