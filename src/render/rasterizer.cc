@@ -242,7 +242,7 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, 
                  const uint32_t* list, size_t count,
                  int width, int height, const RenderSettings& s, const float* values, ContributionVisitor* visitor,
                  int worker, TileBuffers& b, uint64_t& evaluated_out, uint64_t& contributed_out,
-                 const uint8_t* lanes, EntrySum* entries) {
+                 const uint8_t* lanes, EntrySum* entries, bool lanes_only) {
   // Counted locally: the per-worker totals share a cache line, and bumping them in the
   // pixel loop from two threads would serialise the workers (false sharing).
   uint64_t evaluated = 0, contributed = 0;
@@ -264,6 +264,14 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, 
   std::fill(b.V, b.V + kPx, 0.f);
   std::fill(b.done, b.done + kPx, 0);
   int finished = 0;
+  if (lanes_only) {  // pixels outside the lanes start (and count as) ended
+    for (int r = 0; r < kTileSize; ++r)
+      for (int i = 0; i < kTileSize; ++i)
+        if (!((lanes[r * 2 + i / kLanes] >> (i % kLanes)) & 1u)) {
+          b.done[r * kTileSize + i] = -1;
+          finished += y_begin + r < y_end && x_begin + i < x_end;
+        }
+  }
   EntrySum unused;
   for (size_t n = 0; n < count && finished < pixels; ++n) {
     const Splat& g = splats[list[n]];
@@ -281,6 +289,7 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, 
         const int xb = x_begin + half * kLanes;
         if (xb > x1 || xb + kLanes - 1 < x0) continue;
         const unsigned sum_lanes = kSums ? lanes[(y - y_begin) * 2 + half] : 0u;
+        if (lanes_only && sum_lanes == 0) continue;
         finished += blend_group<kVisit, kSums, kShade>(g, col, depth, value, dy, row + half * kLanes, xb, x0, x1, y, s.alpha_max,
                                                want_value, b, evaluated, contributed, visitor, worker, sum_lanes,
                                                entry);
@@ -484,12 +493,13 @@ RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, cons
     const bool sums_here = sums && (!pass.sum_tiles || (*pass.sum_tiles)[t]);
     auto with_shade = [&](auto visit, auto sum, const uint8_t* lanes, EntrySum* entries) {
       constexpr bool kV = decltype(visit)::value, kS = decltype(sum)::value;
+      const bool lanes_only = kS && pass.sum_pixels_only;
       if (shade)
         raster_tile<kV, kS, true>(tx, ty, splats.data(), rgb, d.depth.data(), list, count, W, H, s, vals, visitor, w, b, evaluated[w],
-                                  contributed[w], lanes, entries);
+                                  contributed[w], lanes, entries, lanes_only);
       else
         raster_tile<kV, kS, false>(tx, ty, splats.data(), rgb, nullptr, list, count, W, H, s, vals, visitor, w, b,
-                                   evaluated[w], contributed[w], lanes, entries);
+                                   evaluated[w], contributed[w], lanes, entries, lanes_only);
     };
     if (stored_values && !sums_here) {
       // Every Gaussian of the tile carries 1, or every one 0: the stored blend is the answer.

@@ -55,6 +55,9 @@ struct TilePass {
   // still open (contributed, or ended it): an entry that never was changes no pixel.
   const Image* sum_mask = nullptr;
   const std::vector<uint8_t>* sum_tiles = nullptr;  // on_tile only for these (nullptr: all)
+  // Summed tiles blend only their pixels where sum_mask > 0.5 (a pixel's weights do not
+  // depend on other pixels): the sums are the same, the images there are not rendered.
+  bool sum_pixels_only = false;
   std::function<void(int worker, size_t tile, const uint32_t* sums, const uint8_t* blended)> on_tile;
 };
 

@@ -143,6 +143,7 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     pass.tile_mask = &raster;
     pass.sum_mask = mask;
     pass.sum_tiles = &summed;
+    pass.sum_pixels_only = mask && !values;  // no image is returned: only the mask's pixels matter
     pass.on_tile = [&](int w, size_t t, const uint32_t* entry_sums, const uint8_t*) { add_pairs(w, t, entry_sums); };
     RenderOutput r = run_tiles(frame, rs, pass);
     if (values && value_image) *value_image = std::move(r.value);
