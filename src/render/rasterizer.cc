@@ -111,11 +111,10 @@ bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera
   const int tx0 = std::max(rx0, px0 / kTileSize), tx1 = std::min(rx1, px1 / kTileSize + 1);
   const int ty0 = std::max(ry0, py0 / kTileSize), ty1 = std::min(ry1, py1 / kTileSize + 1);
   if (tx0 >= tx1 || ty0 >= ty1) return false;
-  // Images are at most 65535 pixels wide (Camera::validate), so 16 bits hold the boxes.
-  out.px0 = uint16_t(px0);
-  out.px1 = uint16_t(px1);
-  out.py0 = uint16_t(py0);
-  out.py1 = uint16_t(py1);
+  // Rounded up, the half-widths give a box holding this one; images are at most 65535
+  // pixels wide (Camera::validate), so 16 bits hold every box that matters.
+  out.hx = uint16_t(std::min(65535.f, std::ceil(ex)));
+  out.hy = uint16_t(std::min(65535.f, std::ceil(ey)));
   proj.tx0 = uint16_t(tx0);
   proj.tx1 = uint16_t(tx1);
   proj.ty0 = uint16_t(ty0);
@@ -280,8 +279,10 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, 
     const float value = want_value ? values[g.index] : 0.f;
     EntrySum& entry = kSums ? entries[n] : unused;
     // Pixel box of this Gaussian inside the tile; columns past the image edge never count.
-    const int x0 = std::max(int(g.px0), x_begin), x1 = std::min(int(g.px1), x_end - 1);
-    const int y0 = std::max(int(g.py0), y_begin), y1 = std::min(int(g.py1), y_end - 1);
+    const int x0 = std::max(int(std::ceil(g.mx - float(g.hx))), x_begin);
+    const int x1 = std::min(int(std::floor(g.mx + float(g.hx))), x_end - 1);
+    const int y0 = std::max(int(std::ceil(g.my - float(g.hy))), y_begin);
+    const int y1 = std::min(int(std::floor(g.my + float(g.hy))), y_end - 1);
     for (int y = y0; y <= y1; ++y) {
       const float dy = g.my - float(y);
       const int row = (y - y_begin) * kTileSize;
