@@ -175,7 +175,7 @@ int run_eval_ablation(const Args& args) {
     for (size_t k = 0; k < session.views().size(); ++k) {
       const segment::ViewState& v = session.view_states()[k];
       write_png((dir / (session.views()[k].name + ".png")).string(),
-                segment::make_overlay(session.views()[k].rgb, v, session.selection_coverage(int(k))));
+                segment::make_overlay(session.views()[k].rgb_image(), v, session.selection_coverage(int(k))));
       char line[256];
       std::snprintf(line, sizeof line, "%s %s %d %.3f %d %.3f %.3f %.3f %d %d %zu %d\n", session.views()[k].name.c_str(),
                     status_word(v.status),

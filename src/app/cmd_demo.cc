@@ -79,7 +79,7 @@ std::vector<bool> demo_segmentation(const DemoScene& demo, int object, const fs:
   for (size_t k = 0; k < session->views().size(); ++k) {
     const auto& v = session->views()[k];
     write_png((seg_dir / (v.name + ".png")).string(),
-              segment::make_overlay(v.rgb, session->view_states()[k], session->selection_coverage(int(k))));
+              segment::make_overlay(v.rgb_image(), session->view_states()[k], session->selection_coverage(int(k))));
   }
   std::printf("wrote %s and per-view evidence in %s\n",
               (out / (demo.objects[size_t(object)].name + ".isel")).string().c_str(), seg_dir.string().c_str());

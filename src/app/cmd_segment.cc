@@ -100,7 +100,7 @@ int run_segment(const std::vector<std::string>& argv) {
     for (size_t k = 0; k < session->views().size(); ++k) {
       const auto& v = session->views()[k];
       write_png((dir / (camera_file_stem(v.name) + ".png")).string(),
-                segment::make_overlay(v.rgb, session->view_states()[k], session->selection_coverage(int(k))));
+                segment::make_overlay(v.rgb_image(), session->view_states()[k], session->selection_coverage(int(k))));
     }
     std::printf("wrote overlays to %s (blue: SAM mask, orange: 3D selection, dots: clicks, border: "
                 "green accepted / red dropped / grey no click)\n",

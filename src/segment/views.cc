@@ -73,20 +73,31 @@ SegmentView build_view(const GaussianScene& scene, const Camera& camera, int cam
   RenderOutput r = compact_frame(v.frame, rs, false);
   v.depth = std::move(r.depth);
   v.alpha = std::move(r.alpha);
+  Image rgb;
   if (opt.use_photos) {
     if (camera.image_path.empty()) throw Error("camera '" + camera.name + "' has no source photo (use renders)");
     Image photo = read_image(camera.image_path, 3);
-    v.rgb = (photo.width == v.camera.width && photo.height == v.camera.height)
-                ? std::move(photo)
-                : resize_image(photo, v.camera.width, v.camera.height);
+    rgb = (photo.width == v.camera.width && photo.height == v.camera.height)
+              ? std::move(photo)
+              : resize_image(photo, v.camera.width, v.camera.height);
   } else {
-    v.rgb = std::move(r.color);
-    for (float& x : v.rgb.data) x = std::clamp(x, 0.f, 1.f);
+    rgb = std::move(r.color);
   }
+  for (float& x : rgb.data) x = std::clamp(x, 0.f, 1.f);
   v.all_votes = total_votes(v.frame, opt.threads);
-  v.embedding = sam.encode_cached(v.rgb, opt.cache_dir, timings);
+  v.embedding = sam.encode_cached(rgb, opt.cache_dir, timings);
+  // A quarter of the float image: at 1000x660, 6 MB less per view.
+  v.rgb8.resize(rgb.data.size());
+  for (size_t i = 0; i < rgb.data.size(); ++i) v.rgb8[i] = uint8_t(std::lround(rgb.data[i] * 255.f));
   v.features = v.embedding.feature_map();
   return v;
+}
+
+Image SegmentView::rgb_image() const {
+  Image out(camera.width, camera.height, 3);
+  if (rgb8.size() != out.data.size()) return Image();
+  for (size_t i = 0; i < rgb8.size(); ++i) out.data[i] = float(rgb8[i]) / 255.f;
+  return out;
 }
 
 std::vector<SegmentView> build_views(const SceneBundle& b, const std::vector<int>& indices,

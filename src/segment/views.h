@@ -4,6 +4,7 @@
 // prepared frame (for votes and selection masks), all-pixel votes and its SAM embedding.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -21,7 +22,8 @@ struct SegmentView {
   std::string name;
   int camera_index = -1;  // index in the scene's camera list; -1 for a free camera
   Camera camera;          // at the working resolution
-  Image rgb;              // what SAM segments
+  std::vector<uint8_t> rgb8;  // what SAM segmented, 8 bits per channel (kept for the overlays)
+  Image rgb_image() const;    // rgb8 as a float image
   Image depth, alpha;     // rendered expected depth and accumulated alpha
   PreparedFrame frame;
   ViewVotes all_votes;    // A-votes of every pixel (mask independent)

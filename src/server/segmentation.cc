@@ -328,7 +328,7 @@ std::vector<std::vector<uint8_t>> Segmentation::thumbnails(int side) const {
   const auto& views = session_->views();
   for (size_t k = 0; k < views.size(); ++k) {
     const bool any = selected_count() > 0;
-    Image overlay = segment::make_overlay(views[k].rgb, session_->view_states()[k],
+    Image overlay = segment::make_overlay(views[k].rgb_image(), session_->view_states()[k],
                                           any ? session_->selection_coverage(int(k)) : Image());
     const double s = double(side) / std::max(overlay.width, overlay.height);
     if (s < 1)

@@ -125,7 +125,7 @@ segment::SegmentView reuse_view(const segment::SegmentView& donor, const Gaussia
   v.name = donor.name;
   v.camera_index = donor.camera_index;
   v.camera = donor.camera;
-  v.rgb = donor.rgb;
+  v.rgb8 = donor.rgb8;
   v.depth = donor.depth;
   v.alpha = donor.alpha;
   v.embedding = donor.embedding;
