@@ -88,8 +88,10 @@ Propagated propagate(const SegmentView& from, const Click& click, const SegmentV
   }
 
   // Epipolar search over the target view's feature grid.
-  const models::FeatureMap& src_features = from.features;
-  const models::FeatureMap& dst_features = to.features;
+  // Built from the embeddings when a search needs them (a few ms) rather than kept per
+  // view (4 MB each).
+  const models::FeatureMap src_features = from.embedding.feature_map();
+  const models::FeatureMap dst_features = to.embedding.feature_map();
   Point2 a, b;
   const double t_max = std::max(1.0, scene_extent) * 1e3;
   if (!epipolar_segment(from.camera, click.x, click.y, to.camera, 1e-6, t_max, a, b)) {

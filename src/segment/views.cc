@@ -89,7 +89,6 @@ SegmentView build_view(const GaussianScene& scene, const Camera& camera, int cam
   // A quarter of the float image: at 1000x660, 6 MB less per view.
   v.rgb8.resize(rgb.data.size());
   for (size_t i = 0; i < rgb.data.size(); ++i) v.rgb8[i] = uint8_t(std::lround(rgb.data[i] * 255.f));
-  v.features = v.embedding.feature_map();
   return v;
 }
 

@@ -28,7 +28,6 @@ struct SegmentView {
   PreparedFrame frame;
   ViewVotes all_votes;    // A-votes of every pixel (mask independent)
   models::SamEmbedding embedding;
-  models::FeatureMap features;  // the embedding as a normalised grid, built once
 };
 
 struct ViewOptions {

@@ -129,7 +129,6 @@ segment::SegmentView reuse_view(const segment::SegmentView& donor, const Gaussia
   v.depth = donor.depth;
   v.alpha = donor.alpha;
   v.embedding = donor.embedding;
-  v.features = donor.features;
   v.frame = prepare_frame(after, v.camera, view_render_settings(opt));
   v.all_votes = segment::total_votes(v.frame, opt.threads);
   return v;
