@@ -111,10 +111,9 @@ bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera
   const int tx0 = std::max(rx0, px0 / kTileSize), tx1 = std::min(rx1, px1 / kTileSize + 1);
   const int ty0 = std::max(ry0, py0 / kTileSize), ty1 = std::min(ry1, py1 / kTileSize + 1);
   if (tx0 >= tx1 || ty0 >= ty1) return false;
-  // Rounded up, the half-widths give a box holding this one; images are at most 65535
-  // pixels wide (Camera::validate), so 16 bits hold every box that matters.
-  out.hx = uint16_t(std::min(65535.f, std::ceil(ex)));
-  out.hy = uint16_t(std::min(65535.f, std::ceil(ey)));
+  // Rounded up, the half-widths give a box holding this one.
+  out.hx = encode_half_width(ex);
+  out.hy = encode_half_width(ey);
   proj.tx0 = uint16_t(tx0);
   proj.tx1 = uint16_t(tx1);
   proj.ty0 = uint16_t(ty0);
@@ -279,10 +278,11 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, 
     const float value = want_value ? values[g.index] : 0.f;
     EntrySum& entry = kSums ? entries[n] : unused;
     // Pixel box of this Gaussian inside the tile; columns past the image edge never count.
-    const int x0 = std::max(int(std::ceil(g.mx - float(g.hx))), x_begin);
-    const int x1 = std::min(int(std::floor(g.mx + float(g.hx))), x_end - 1);
-    const int y0 = std::max(int(std::ceil(g.my - float(g.hy))), y_begin);
-    const int y1 = std::min(int(std::floor(g.my + float(g.hy))), y_end - 1);
+    const float hx = decode_half_width(g.hx), hy = decode_half_width(g.hy);
+    const int x0 = int(std::max(std::ceil(g.mx - hx), float(x_begin)));
+    const int x1 = int(std::min(std::floor(g.mx + hx), float(x_end - 1)));
+    const int y0 = int(std::max(std::ceil(g.my - hy), float(y_begin)));
+    const int y1 = int(std::min(std::floor(g.my + hy), float(y_end - 1)));
     for (int y = y0; y <= y1; ++y) {
       const float dy = g.my - float(y);
       const int row = (y - y_begin) * kTileSize;

@@ -2,6 +2,7 @@
 // the prepared frame's storage and one pass over a frame's tiles.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -18,12 +19,21 @@ struct Splat {
   float ca, cb, cc;      // conic
   float opacity;         // activated
   uint32_t index;        // Gaussian index in the scene
-  // Half-widths of the pixel box outside which alpha < 1/255: [ceil(mx - hx), floor(mx + hx)]
-  // (and the same in y) holds every pixel it reaches; 4 bytes instead of the box's 8 keep a
-  // splat at 32 bytes (kept frames hold millions).
+  // Half-widths of the pixel box outside which alpha < 1/255, in 1/16 pixel rounded up:
+  // [ceil(mx - hx / 16), floor(mx + hx / 16)] (and the same in y) holds every pixel it
+  // reaches; kWholeImage: wider than any image. 4 bytes instead of the box's 8 keep a splat
+  // at 32 bytes (kept frames hold millions); a finer unit than whole pixels keeps the box
+  // from growing a row for most small splats (the voting passes' cost).
   uint16_t hx, hy;
 };
 static_assert(sizeof(Splat) == 32, "a splat is half a cache line");
+constexpr float kHalfWidthUnit = 1.f / 16;
+constexpr uint16_t kWholeImage = 65535;
+inline uint16_t encode_half_width(float e) {
+  const float units = std::ceil(e / kHalfWidthUnit);
+  return units < float(kWholeImage) ? uint16_t(units) : kWholeImage;
+}
+inline float decode_half_width(uint16_t h) { return h == kWholeImage ? 1e9f : float(h) * kHalfWidthUnit; }
 
 struct PreparedFrame::Data {
   std::vector<Splat> splats;          // visible Gaussians in depth order
