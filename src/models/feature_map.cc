@@ -7,25 +7,42 @@
 
 namespace isegman::models {
 
-FeatureMap::FeatureMap(const std::vector<float>& chw, int channels, int grid_w, int grid_h, int image_w, int image_h,
-                       int resized_w, int resized_h, double cell_px)
-    : channels_(channels), grid_w_(grid_w), grid_h_(grid_h), image_w_(image_w), image_h_(image_h) {
-  if (size_t(channels) * grid_w * grid_h != chw.size()) throw Error("FeatureMap: data size does not match the grid");
+FeatureMap::FeatureMap(std::vector<float> chw, int channels, int grid_w, int grid_h, int image_w, int image_h,
+                       int resized_w, int resized_h, double cell_px) {
+  auto owned = std::make_shared<const std::vector<float>>(std::move(chw));
+  const float* data = owned->data();
+  const size_t count = owned->size();
+  *this = FeatureMap(std::move(owned), data, count, channels, grid_w, grid_h, image_w, image_h, resized_w, resized_h,
+                     cell_px);
+}
+
+FeatureMap::FeatureMap(std::shared_ptr<const void> owner, const float* chw, size_t count, int channels, int grid_w,
+                       int grid_h, int image_w, int image_h, int resized_w, int resized_h, double cell_px)
+    : owner_(std::move(owner)), raw_(chw), channels_(channels), grid_w_(grid_w), grid_h_(grid_h), image_w_(image_w),
+      image_h_(image_h) {
+  if (size_t(channels) * grid_w * grid_h != count || (count > 0 && !chw))
+    throw Error("FeatureMap: data size does not match the grid");
   if (image_w <= 0 || image_h <= 0 || resized_w <= 0 || resized_h <= 0 || cell_px <= 0)
     throw Error("FeatureMap: invalid image geometry");
   sx_ = double(resized_w) / image_w / cell_px;
   sy_ = double(resized_h) / image_h / cell_px;
   valid_cols_ = std::min(grid_w, int(std::ceil(resized_w / cell_px - 1e-9)));
   valid_rows_ = std::min(grid_h, int(std::ceil(resized_h / cell_px - 1e-9)));
-  data_.resize(chw.size());
-  size_t plane = size_t(grid_w) * grid_h;
-  for (size_t p = 0; p < plane; ++p) {
-    double norm = 0;
-    for (int c = 0; c < channels; ++c) norm += double(chw[c * plane + p]) * chw[c * plane + p];
-    float inv = norm > 0 ? float(1.0 / std::sqrt(norm)) : 0.f;
-    float* out = data_.data() + p * channels;
-    for (int c = 0; c < channels; ++c) out[c] = chw[c * plane + p] * inv;
-  }
+}
+
+float FeatureMap::inverse_norm(size_t p) const {
+  const size_t plane = size_t(grid_w_) * grid_h_;
+  double norm = 0;
+  for (int c = 0; c < channels_; ++c) norm += double(raw_[c * plane + p]) * raw_[c * plane + p];
+  return norm > 0 ? float(1.0 / std::sqrt(norm)) : 0.f;
+}
+
+std::vector<float> FeatureMap::cell(int gx, int gy) const {
+  const size_t plane = size_t(grid_w_) * grid_h_, p = size_t(gy) * grid_w_ + gx;
+  const float inv = inverse_norm(p);
+  std::vector<float> out(static_cast<size_t>(channels_));
+  for (int c = 0; c < channels_; ++c) out[size_t(c)] = raw_[c * plane + p] * inv;
+  return out;
 }
 
 void FeatureMap::pixel_to_grid(double px, double py, double& gx, double& gy) const {
@@ -57,7 +74,7 @@ std::vector<float> FeatureMap::sample(double px, double py) const {
   int x1 = std::min(x0 + 1, valid_cols_ - 1), y1 = std::min(y0 + 1, valid_rows_ - 1);
   float wx = float(ux - x0), wy = float(uy - y0);
   std::vector<float> f(channels_);
-  const float *a = cell(x0, y0), *b = cell(x1, y0), *c = cell(x0, y1), *d = cell(x1, y1);
+  const std::vector<float> a = cell(x0, y0), b = cell(x1, y0), c = cell(x0, y1), d = cell(x1, y1);
   double norm = 0;
   for (int k = 0; k < channels_; ++k) {
     f[k] = (1 - wy) * ((1 - wx) * a[k] + wx * b[k]) + wy * ((1 - wx) * c[k] + wx * d[k]);
@@ -71,9 +88,10 @@ std::vector<float> FeatureMap::sample(double px, double py) const {
 }
 
 float FeatureMap::affinity(const std::vector<float>& unit, int gx, int gy) const {
-  const float* c = cell(gx, gy);
+  const size_t plane = size_t(grid_w_) * grid_h_, p = size_t(gy) * grid_w_ + gx;
+  const float inv = inverse_norm(p);
   float s = 0;
-  for (int k = 0; k < channels_; ++k) s += unit[k] * c[k];
+  for (int k = 0; k < channels_; ++k) s += unit[k] * (raw_[k * plane + p] * inv);
   return s;
 }
 

@@ -59,7 +59,7 @@ TEST(FeatureMap, CellsAreUnitVectorsAndSamplingInterpolates) {
   FeatureMap fm(grid_data(4, 8), 4, 8, 8, 128, 128, 128, 128, 16.0);
   for (int y = 0; y < 8; ++y)
     for (int x = 0; x < 8; ++x) {
-      const float* c = fm.cell(x, y);
+      const std::vector<float> c = fm.cell(x, y);
       double n = 0;
       for (int k = 0; k < 4; ++k) n += c[k] * c[k];
       EXPECT_NEAR(n, 1.0, 1e-5);

@@ -225,9 +225,8 @@ std::string sam_image_key(const Image& rgb) { return key_of_rgb8(quantise_rgb(rg
 FeatureMap SamEmbedding::feature_map() const {
   if (empty() || features.shape.size() != 4) throw Error("SAM: no embedding");
   int c = int(features.shape[1]), gh = int(features.shape[2]), gw = int(features.shape[3]);
-  std::vector<float> chw(features.data<float>(), features.data<float>() + features.numel());
-  return FeatureMap(chw, c, gw, gh, image_width, image_height, resized_width, resized_height,
-                    double(input_size) / gw);
+  return FeatureMap(features.bytes, features.data<float>(), size_t(features.numel()), c, gw, gh, image_width,
+                    image_height, resized_width, resized_height, double(input_size) / gw);
 }
 
 namespace {

@@ -87,9 +87,8 @@ Propagated propagate(const SegmentView& from, const Click& click, const SegmentV
     return out;
   }
 
-  // Epipolar search over the target view's feature grid.
-  // Built from the embeddings when a search needs them (a few ms) rather than kept per
-  // view (4 MB each).
+  // Epipolar search over the target view's feature grid (maps over the embeddings, which
+  // normalise only the cells the search reads).
   const models::FeatureMap src_features = from.embedding.feature_map();
   const models::FeatureMap dst_features = to.embedding.feature_map();
   Point2 a, b;
