@@ -9,6 +9,7 @@
 #include "io/image_io.h"
 #include "io/scene_loader.h"
 #include "render/rasterizer.h"
+#include "render/visibility.h"
 
 namespace fs = std::filesystem;
 
@@ -168,6 +169,30 @@ TaskResult score_task(const EvalTask& task, const SceneBundle& b, const std::vec
   r.iou /= double(r.masks.size());
   r.accuracy /= double(r.masks.size());
   return r;
+}
+
+std::vector<bool> mask_majority_selection(const EvalTask& task, const SceneBundle& b, int threads) {
+  const size_t n = b.gaussians.size();
+  std::vector<int64_t> inside(n, 0), total(n, 0);
+  RenderSettings rs;
+  rs.threads = threads;
+  rs.color = rs.depth = false;
+  for (const auto& [view, path] : task.masks) {
+    const Camera* c = find_camera(b.cameras, view);
+    if (!c) throw Error(path, "mask for '" + view + "', which is not a camera of the scene");
+    const Image truth = read_image(path);
+    Image mask(truth.width, truth.height, 1);
+    for (size_t i = 0; i < mask.data.size(); ++i)
+      for (int ch = 0; ch < truth.channels; ++ch) mask.data[i] += truth.data[i * truth.channels + ch] > 0.f ? 1.f : 0.f;
+    const Camera cam = (truth.width == c->width && truth.height == c->height) ? *c : c->resized(truth.width, truth.height);
+    const PreparedFrame frame = prepare_frame(b.gaussians, cam, rs);
+    const GaussianWeights in = weight_sums(frame, &mask, rs), all = weight_sums(frame, nullptr, rs);
+    for (size_t k = 0; k < in.index.size(); ++k) inside[in.index[k]] += in.weight[k];
+    for (size_t k = 0; k < all.index.size(); ++k) total[all.index[k]] += all.weight[k];
+  }
+  std::vector<bool> sel(n, false);
+  for (size_t i = 0; i < n; ++i) sel[i] = total[i] > 0 && 2 * inside[i] > total[i];
+  return sel;
 }
 
 }  // namespace isegman::segment

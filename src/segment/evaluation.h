@@ -58,6 +58,13 @@ MaskScore score_selection(const GaussianScene& scene, const std::vector<Camera>&
 TaskResult score_task(const EvalTask& task, const SceneBundle& scene, const std::vector<bool>& selection,
                       int threads = 0);
 
+// What a selection of whole Gaussians can reach against the task's masks, as near as a
+// per-Gaussian rule gets: a Gaussian is taken when more of its blending weight, summed over
+// every mask's view, falls inside the masks than outside. Large Gaussians whose weight lies
+// mostly beside a thin object cannot be taken without the pixels around it: the gap between
+// this score and a method's is what the method could still gain.
+std::vector<bool> mask_majority_selection(const EvalTask& task, const SceneBundle& scene, int threads = 0);
+
 TaskResult evaluate_task(const EvalTask& task, std::shared_ptr<const models::SamModel> sam,
                          const SessionOptions& session_options, const ViewOptions& view_options,
                          const std::string& views_spec, const Progress& progress = nullptr);

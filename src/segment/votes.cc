@@ -59,24 +59,47 @@ std::vector<bool> VoteAccumulator::select(double tau, double min_total, const Ce
   return sel;
 }
 
+namespace {
+bool mask_near(const Image& mask, int x, int y, int margin) {
+  for (int yy = std::max(0, y - margin); yy <= std::min(mask.height - 1, y + margin); ++yy)
+    for (int xx = std::max(0, x - margin); xx <= std::min(mask.width - 1, x + margin); ++xx)
+      if (mask.at(xx, yy) > 0.5f) return true;
+  return false;
+}
+}  // namespace
+
 ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const Image& mask, const Image& depth,
-                        const ViewVotes& positive, const ViewVotes& total) {
+                        const ViewVotes& positive, const ViewVotes& total, const ViewVotes* neutral, int margin) {
   // No depth image (a view built without one): centres are not tested for being hidden.
   const bool have_depth = !depth.data.empty();
   if (have_depth && (depth.width != mask.width || depth.height != mask.height))
     throw Error("centred_votes: depth and mask sizes differ");
   ViewVotes out;
-  size_t t = 0;
+  size_t t = 0, n = 0;
   for (size_t k = 0; k < positive.index.size(); ++k) {
     const uint32_t g = positive.index[k];
-    double u = 0, v = 0, z = 0;
-    if (!camera.project(scene.position(g), u, v, &z)) continue;
-    const int x = int(std::floor(u)), y = int(std::floor(v));
-    if (x < 0 || y < 0 || x >= mask.width || y >= mask.height || !(mask.at(x, y) > 0.5f)) continue;
-    const double surface = have_depth ? double(depth.at(x, y)) : 0.0;
-    if (surface > 0 && z > surface * 1.05 + 2.0 * depth_extent(scene, camera, g)) continue;
     while (t < total.index.size() && total.index[t] < g) ++t;
     if (t == total.index.size() || total.index[t] != g) continue;
+    double u = 0, v = 0, z = 0;
+    const bool projects = camera.project(scene.position(g), u, v, &z);  // false: behind the camera
+    const int x = projects ? int(std::floor(u)) : -1, y = projects ? int(std::floor(v)) : -1;
+    const bool in_frame = x >= 0 && y >= 0 && x < mask.width && y < mask.height;
+    const double surface = in_frame && have_depth ? double(depth.at(x, y)) : 0.0;
+    const bool hidden = surface > 0 && z > surface * 1.05 + 2.0 * depth_extent(scene, camera, g);
+    bool counts;
+    if (in_frame && mask.at(x, y) > 0.5f) {
+      counts = !hidden;
+    } else if (!in_frame || (hidden && !mask_near(mask, x, y, margin))) {
+      int64_t gated = 0;
+      if (neutral) {
+        while (n < neutral->index.size() && neutral->index[n] < g) ++n;
+        if (n < neutral->index.size() && neutral->index[n] == g) gated = neutral->weight[n];
+      }
+      counts = 2 * positive.weight[k] > total.weight[t] - gated;
+    } else {
+      counts = false;  // a visible centre outside the mask, or one hidden at the mask's edge
+    }
+    if (!counts) continue;
     out.index.push_back(g);
     out.weight.push_back(total.weight[t]);
   }

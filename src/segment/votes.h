@@ -5,6 +5,7 @@
 // of thread count and order, and a view's contribution can be removed again bit-exactly.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -44,6 +45,13 @@ struct CentreRule {
   bool enabled = false;
   double tau_low = 0.5;     // shares in (tau_low, tau] may be decided by centre evidence
   double min_centred = 0.7; // ... when C/A exceeds this (the centre inside the masks of nearly every view)
+  // A centre hidden outside the mask counts by where the Gaussian shows (centred_votes) when
+  // no mask pixel lies within this share of the view's longer side (6 pixels at 480): a mask's
+  // outline is a few pixels off the object's.
+  double hidden_margin = 1.0 / 80;
+  int hidden_margin_pixels(const Camera& c) const {
+    return int(std::lround(hidden_margin * std::max(c.width, c.height)));
+  }
 };
 
 // Part and whole (session.h, whole_neutral): a view whose mask is a part of one of its own
@@ -103,8 +111,17 @@ class VoteAccumulator {
 // margin and two of its depth standard deviations. A Gaussian behind the object (the roof
 // under a turret) has its centre inside the mask but hidden, and only its rim shows.
 // An empty `depth` skips that test.
+//
+// Where the centre cannot be checked, the view counts a Gaussian that shows mostly inside
+// the mask (positive weight above half its total less its `neutral` weight): its centre
+// projects outside the frame, or is hidden by a nearer surface that the mask leaves out
+// (no mask pixel within `margin` pixels of it). A real capture's thin pillar has coarse
+// Gaussians that reach up behind the ceiling: their centres are hidden there, and their
+// lower parts are the pillar's top. A centre hidden by the object itself (a wall behind a
+// trellis, the floor in a ring) stays unchecked and does not count.
 ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const Image& mask, const Image& depth,
-                        const ViewVotes& positive, const ViewVotes& total);
+                        const ViewVotes& positive, const ViewVotes& total, const ViewVotes* neutral = nullptr,
+                        int margin = 6);
 
 // Bounding tiles of mask > 0.5 pixels, as a tile mask for rasterize().
 std::vector<uint8_t> tiles_under_mask(const Image& mask, int grid_x, int grid_y);
