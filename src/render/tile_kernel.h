@@ -12,7 +12,7 @@
 
 namespace isegman {
 
-// A projected Gaussian, as the tile loop reads it. 36 bytes: a prepared frame of a large
+// A projected Gaussian, as the tile loop reads it. 32 bytes: a prepared frame of a large
 // scene holds millions, so colours and depths live apart (frames kept for voting drop them).
 struct Splat {
   float mx, my;          // centre, index coordinates

@@ -172,8 +172,11 @@ TEST(Votes, CentreRuleTellsAnOutlineGaussianFromASpillingNeighbour) {
   ASSERT_EQ(centred.index, (std::vector<uint32_t>{0}));  // 1: centre outside; 2: centre hidden
   // Without a depth image the hidden centre cannot be told apart, and it counts.
   EXPECT_EQ(centred_votes(g, c, mask, Image(), pos, all).index, (std::vector<uint32_t>{0, 2}));
-  for (size_t k = 0; k < all.index.size(); ++k)
-    if (all.index[k] == 0) EXPECT_EQ(centred.weight[0], all.weight[k]);  // its whole view total
+  for (size_t k = 0; k < all.index.size(); ++k) {
+    if (all.index[k] == 0) {
+      EXPECT_EQ(centred.weight[0], all.weight[k]);  // its whole view total
+    }
+  }
   VoteAccumulator acc(3);
   acc.add(pos, all, 1, nullptr, &centred);
   const auto share = acc.ratios();
