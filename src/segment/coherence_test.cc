@@ -37,7 +37,9 @@ TEST(Coherence, UndecidedSharesFollowTheirNeighbours) {
   const std::vector<bool> sel = coherent_selection(l.votes, l.scene, index, 0.8, 0.05, o);
   for (int i = 0; i < 40; ++i) {
     const bool object = i < 20;
-    if (shares[size_t(i)] == 0.6) EXPECT_FALSE(plain[size_t(i)]) << i;
+    if (shares[size_t(i)] == 0.6) {
+      EXPECT_FALSE(plain[size_t(i)]) << i;
+    }
     // The boundary (i = 18..21) mixes both sides; away from it the company decides.
     if (i >= 17 && i <= 22) continue;
     EXPECT_EQ(bool(sel[size_t(i)]), object) << i;

@@ -492,7 +492,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     }
     ViewVotes centred;
     if (o.centre_rule.enabled)
-      centred = centred_votes(scene_, view.camera, mask, view.depth, vs.positive, view.all_votes, &vs.neutral,
+      centred = centred_votes(scene_, view.camera, mask, view.depth, vs.positive, view.all_votes,
                               o.centre_rule.hidden_margin_pixels(view.camera));
     acc.add(vs.positive, view.all_votes, +1, &vs.neutral, &centred, &whole);
     live.add_support(vs.positive.index);

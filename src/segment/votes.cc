@@ -69,13 +69,13 @@ bool mask_near(const Image& mask, int x, int y, int margin) {
 }  // namespace
 
 ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const Image& mask, const Image& depth,
-                        const ViewVotes& positive, const ViewVotes& total, const ViewVotes* neutral, int margin) {
+                        const ViewVotes& positive, const ViewVotes& total, int margin) {
   // No depth image (a view built without one): centres are not tested for being hidden.
   const bool have_depth = !depth.data.empty();
   if (have_depth && (depth.width != mask.width || depth.height != mask.height))
     throw Error("centred_votes: depth and mask sizes differ");
   ViewVotes out;
-  size_t t = 0, n = 0;
+  size_t t = 0;
   for (size_t k = 0; k < positive.index.size(); ++k) {
     const uint32_t g = positive.index[k];
     while (t < total.index.size() && total.index[t] < g) ++t;
@@ -90,12 +90,7 @@ ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const 
     if (in_frame && mask.at(x, y) > 0.5f) {
       counts = !hidden;
     } else if (!in_frame || (hidden && !mask_near(mask, x, y, margin))) {
-      int64_t gated = 0;
-      if (neutral) {
-        while (n < neutral->index.size() && neutral->index[n] < g) ++n;
-        if (n < neutral->index.size() && neutral->index[n] == g) gated = neutral->weight[n];
-      }
-      counts = 2 * positive.weight[k] > total.weight[t] - gated;
+      counts = 2 * positive.weight[k] > total.weight[t];
     } else {
       counts = false;  // a visible centre outside the mask, or one hidden at the mask's edge
     }

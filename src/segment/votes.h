@@ -114,15 +114,15 @@ class VoteAccumulator {
 // An empty `depth` skips that test.
 //
 // Where the centre cannot be checked, the view counts a Gaussian that shows mostly inside
-// the mask (positive weight above half its total less its `neutral` weight): its centre
-// projects outside the frame, or is hidden by a nearer surface that the mask leaves out
-// (no mask pixel within `margin` pixels of it). A real capture's thin pillar has coarse
+// the mask (positive weight above half its view total; a depth-gated Gaussian has left
+// `positive` altogether): its centre projects outside the frame, or is hidden by a nearer
+// surface that the mask leaves out (no mask pixel within `margin` pixels of it:
+// CentreRule::hidden_margin_pixels). A real capture's thin pillar has coarse
 // Gaussians that reach up behind the ceiling: their centres are hidden there, and their
 // lower parts are the pillar's top. A centre hidden by the object itself (a wall behind a
 // trellis, the floor in a ring) stays unchecked and does not count.
 ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const Image& mask, const Image& depth,
-                        const ViewVotes& positive, const ViewVotes& total, const ViewVotes* neutral = nullptr,
-                        int margin = 6);
+                        const ViewVotes& positive, const ViewVotes& total, int margin = 12);
 
 // Bounding tiles of mask > 0.5 pixels, as a tile mask for rasterize().
 std::vector<uint8_t> tiles_under_mask(const Image& mask, int grid_x, int grid_y);

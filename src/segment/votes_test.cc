@@ -109,27 +109,15 @@ TEST(Votes, CentreHiddenOutsideTheMaskCountsByWhereTheGaussianShows) {
     }
   std::printf("[ hidden centre ] share of the pillar's Gaussian in the mask %.2f\n", share);
   ASSERT_GT(share, 0.5);
-  EXPECT_EQ(centred_votes(g, c, mask, r.depth, pos, all, nullptr, 2).index, (std::vector<uint32_t>{0}));
+  EXPECT_EQ(centred_votes(g, c, mask, r.depth, pos, all, 2).index, (std::vector<uint32_t>{0}));
   // Within the margin of the mask the centre may be hidden by the object's own edge: no count.
-  EXPECT_TRUE(centred_votes(g, c, mask, r.depth, pos, all, nullptr, 6).index.empty());
-  // Weight made neutral in this view (depth-gated) counts neither way: a Gaussian with 0.3
-  // of its total in the mask and 0.5 neutral shows mostly inside the mask.
-  ViewVotes part = pos, neutral;
-  for (size_t k = 0, t = 0; k < part.index.size(); ++k)
-    if (part.index[k] == 0) {
-      while (all.index[t] != 0) ++t;
-      part.weight[k] = all.weight[t] * 3 / 10;
-      neutral.index.push_back(0);
-      neutral.weight.push_back(all.weight[t] / 2);
-    }
-  EXPECT_TRUE(centred_votes(g, c, mask, r.depth, part, all, nullptr, 2).index.empty());
-  EXPECT_EQ(centred_votes(g, c, mask, r.depth, part, all, &neutral, 2).index, (std::vector<uint32_t>{0}));
+  EXPECT_TRUE(centred_votes(g, c, mask, r.depth, pos, all, 6).index.empty());
   // Mask the Gaussian's visible part only partly: the majority is outside and it does not count.
   Image narrow(64, 32, 1);
   for (int y = 9; y < 32; ++y)
     for (int x = 31; x < 33; ++x) narrow.at(x, y) = 1.f;
   ViewVotes pos_narrow = masked_votes(f, narrow);
-  EXPECT_TRUE(centred_votes(g, c, narrow, r.depth, pos_narrow, all, nullptr, 2).index.empty());
+  EXPECT_TRUE(centred_votes(g, c, narrow, r.depth, pos_narrow, all, 2).index.empty());
 }
 
 TEST(Votes, CentreOutsideTheFrameCountsByWhereTheGaussianShows) {
