@@ -5,6 +5,11 @@
 
 namespace isegman {
 
+// A point in an image, continuous pixel coordinates (core/click.h).
+struct Point2 {
+  double x = 0, y = 0;
+};
+
 struct Vec3 {
   double x = 0, y = 0, z = 0;
   Vec3() = default;

@@ -18,9 +18,7 @@
 
 namespace isegman::edit {
 
-struct Point2 {
-  double x = 0, y = 0;
-};
+using isegman::Point2;  // core/math.h
 
 enum class ShapeKind { kRect, kLasso, kBrush };
 

@@ -9,10 +9,6 @@
 
 namespace isegman::segment {
 
-struct Point2 {
-  double x = 0, y = 0;
-};
-
 // The segment of `dst` showing the ray through pixel (u, v) of `src` (continuous pixel
 // coordinates), for ray depths t in [t_min, t_max] along the unit ray, kept in front of
 // dst's near plane and clipped to dst's image rectangle. False when none of it is visible.
