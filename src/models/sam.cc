@@ -67,7 +67,8 @@ std::string file_hash(const std::string& path) {
   return f.hex();
 }
 
-// The 8-bit RGB image SAM's reference predictor receives.
+}  // namespace
+
 std::vector<uint8_t> quantise_rgb(const Image& img) {
   if (img.empty() || img.width <= 0 || img.height <= 0) throw Error("SAM: empty image");
   if (img.channels != 1 && img.channels != 3 && img.channels != 4)
@@ -81,6 +82,8 @@ std::vector<uint8_t> quantise_rgb(const Image& img) {
     }
   return out;
 }
+
+namespace {
 
 // Resampling taps of PIL's bilinear filter (antialiased when shrinking) for one axis.
 struct Taps {

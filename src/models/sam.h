@@ -48,6 +48,9 @@ struct SamEmbedding {
   static SamEmbedding load(const std::string& path);
 };
 
+// The 8-bit RGB image SAM's reference predictor receives (clamped to [0, 1], rounded;
+// interleaved, 3 channels whatever the input's 1, 3 or 4).
+std::vector<uint8_t> quantise_rgb(const Image& rgb);
 // Content key of an image as SAM sees it (8-bit quantised), hex.
 std::string sam_image_key(const Image& rgb);
 

@@ -83,12 +83,10 @@ SegmentView build_view(const GaussianScene& scene, const Camera& camera, int cam
   } else {
     rgb = std::move(r.color);
   }
-  for (float& x : rgb.data) x = std::clamp(x, 0.f, 1.f);
   v.all_votes = total_votes(v.frame, opt.threads);
   v.embedding = sam.encode_cached(rgb, opt.cache_dir, timings);
-  // A quarter of the float image: at 1000x660, 6 MB less per view.
-  v.rgb8.resize(rgb.data.size());
-  for (size_t i = 0; i < rgb.data.size(); ++i) v.rgb8[i] = uint8_t(std::lround(rgb.data[i] * 255.f));
+  // What SAM encoded, a quarter of the float image: at 1000x660, 6 MB less per view.
+  v.rgb8 = models::quantise_rgb(rgb);
   return v;
 }
 
