@@ -17,6 +17,14 @@ void add_gaussian(GaussianScene& g, Vec3 p, double s, double o) {
   g.sh.insert(g.sh.end(), {0.f, 0.f, 0.f});
 }
 
+// A w x h one-channel mask set to 1 over columns [x0, x1) and rows [y0, y1).
+Image box_mask(int w, int h, int x0, int x1, int y0, int y1) {
+  Image m(w, h, 1);
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) m.at(x, y) = 1.f;
+  return m;
+}
+
 Camera axis_camera() {
   Camera c;
   c.width = 64;
@@ -36,9 +44,7 @@ TEST(Votes, HandBuiltScene) {
   add_gaussian(g, {-0.4, 0, 5}, 0.08, 0.9);
   PreparedFrame f = prepare_frame(g, axis_camera());
   ViewVotes all = total_votes(f, 1);
-  Image left(64, 32, 1);
-  for (int y = 0; y < 32; ++y)
-    for (int x = 0; x < 32; ++x) left.at(x, y) = 1.f;
+  const Image left = box_mask(64, 32, 0, 32, 0, 32);
   ViewVotes pos = masked_votes(f, left, 2);
   VoteAccumulator acc(3);
   acc.add(pos, all);
@@ -67,16 +73,12 @@ TEST(Votes, AddingAndRemovingAViewIsExact) {
   for (int i = 0; i < 40; ++i) add_gaussian(g, {-0.8 + 0.04 * i, 0.1 * std::sin(i), 3 + 0.05 * i}, 0.04, 0.6);
   const Camera c = axis_camera();
   PreparedFrame f = prepare_frame(g, c);
-  Image mask(64, 32, 1);
-  for (int y = 4; y < 20; ++y)
-    for (int x = 10; x < 50; ++x) mask.at(x, y) = 1.f;
+  const Image mask = box_mask(64, 32, 10, 50, 4, 20);
   ViewVotes all = total_votes(f), pos = masked_votes(f, mask);
   VoteAccumulator base(g.size());
   base.add(pos, all);
   VoteAccumulator acc = base;
-  Image mask2(64, 32, 1);
-  for (int y = 0; y < 32; ++y)
-    for (int x = 0; x < 20; ++x) mask2.at(x, y) = 1.f;
+  const Image mask2 = box_mask(64, 32, 0, 20, 0, 32);
   ViewVotes pos2 = masked_votes(f, mask2);
   acc.add(pos2, all);
   EXPECT_FALSE(acc == base);
@@ -97,9 +99,7 @@ TEST(Votes, CentreHiddenOutsideTheMaskCountsByWhereTheGaussianShows) {
   const Camera c = axis_camera();
   PreparedFrame f = prepare_frame(g, c);
   RenderOutput r = render(g, c);
-  Image mask(64, 32, 1);
-  for (int y = 9; y < 32; ++y)
-    for (int x = 22; x < 42; ++x) mask.at(x, y) = 1.f;
+  const Image mask = box_mask(64, 32, 22, 42, 9, 32);
   ViewVotes all = total_votes(f), pos = masked_votes(f, mask);
   double share = 0;
   for (size_t k = 0, t = 0; k < pos.index.size(); ++k)
@@ -113,9 +113,7 @@ TEST(Votes, CentreHiddenOutsideTheMaskCountsByWhereTheGaussianShows) {
   // Within the margin of the mask the centre may be hidden by the object's own edge: no count.
   EXPECT_TRUE(centred_votes(g, c, mask, r.depth, pos, all, 6).index.empty());
   // Mask the Gaussian's visible part only partly: the majority is outside and it does not count.
-  Image narrow(64, 32, 1);
-  for (int y = 9; y < 32; ++y)
-    for (int x = 31; x < 33; ++x) narrow.at(x, y) = 1.f;
+  const Image narrow = box_mask(64, 32, 31, 33, 9, 32);
   ViewVotes pos_narrow = masked_votes(f, narrow);
   EXPECT_TRUE(centred_votes(g, c, narrow, r.depth, pos_narrow, all, 2).index.empty());
 }
@@ -129,11 +127,7 @@ TEST(Votes, CentreOutsideTheFrameCountsByWhereTheGaussianShows) {
   c.width = 40;  // the centre is outside the frame
   PreparedFrame f = prepare_frame(g, c);
   RenderOutput r = render(g, c);
-  Image mask(40, 32, 1), left(40, 32, 1);
-  for (int y = 0; y < 32; ++y) {
-    for (int x = 30; x < 40; ++x) mask.at(x, y) = 1.f;
-    for (int x = 0; x < 30; ++x) left.at(x, y) = 1.f;
-  }
+  const Image mask = box_mask(40, 32, 30, 40, 0, 32), left = box_mask(40, 32, 0, 30, 0, 32);
   ViewVotes all = total_votes(f);
   EXPECT_EQ(centred_votes(g, c, mask, r.depth, masked_votes(f, mask), all).index, (std::vector<uint32_t>{0}));
   EXPECT_TRUE(centred_votes(g, c, left, r.depth, masked_votes(f, left), all).index.empty());
@@ -152,9 +146,7 @@ TEST(Votes, CentreRuleTellsAnOutlineGaussianFromASpillingNeighbour) {
   const Camera c = axis_camera();
   PreparedFrame f = prepare_frame(g, c);
   RenderOutput r = render(g, c);
-  Image mask(64, 32, 1);
-  for (int y = 0; y < 32; ++y)
-    for (int x = 30; x < 33; ++x) mask.at(x, y) = 1.f;
+  const Image mask = box_mask(64, 32, 30, 33, 0, 32);
   ViewVotes all = total_votes(f), pos = masked_votes(f, mask);
   const ViewVotes centred = centred_votes(g, c, mask, r.depth, pos, all);
   ASSERT_EQ(centred.index, (std::vector<uint32_t>{0}));  // 1: centre outside; 2: centre hidden
