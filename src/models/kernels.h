@@ -17,6 +17,17 @@ at::Tensor linear(const at::Tensor& x, const at::Tensor& w, const at::Tensor& bi
 // 1x1 convolution, stride 1, no padding: per image W[Co, Ci] @ x[Ci, H*W] (+ bias[Co]).
 at::Tensor conv1x1(const at::Tensor& x, const at::Tensor& w, const at::Tensor& bias);
 
+// ConvTranspose2d whose kernel equals its stride (no padding, dilation 1, one group):
+// every input pixel writes its own kh x kw output block, y[n,o,i*kh+a,j*kw+b] =
+// sum_c x[n,c,i,j] w[c,o,a,b] + bias[o]. One sgemm per image, x^T [H*W, Ci] @ W [Ci, Co*kh*kw]
+// (x^T read in place from an NHWC view, else transposed first), then one pass that spreads
+// the product's rows into the blocks and adds the bias. w [Ci, Co, kh, kw], bias [Co] or undefined.
+at::Tensor conv_transpose_blocks(const at::Tensor& x, const at::Tensor& w, const at::Tensor& bias);
+
+// x [..., M, N] (contiguous) as a contiguous [..., N, M]: a blocked copy, several times
+// faster than ATen's strided one on these CPUs.
+at::Tensor transpose_last_two(const at::Tensor& x);
+
 // softmax(scale · q @ kt + bias) @ v, softmax over the last axis: q [..., M, K],
 // kt [..., K, N], v [..., N, D], bias (optional) broadcastable to [..., M, N]; batch axes
 // broadcast. Works through blocks of score rows that stay in cache: two sgemms, the bias

@@ -469,13 +469,7 @@ void op_conv_transpose(Ctx& c) {
   for (int64_t i = 0; i < k; ++i)
     shuffle = shuffle && kernel[i] == strides[i] && dilations[i] == 1 && begin[i] == 0 && end[i] == 0 && out_pad[i] == 0;
   if (shuffle) {
-    // Non-overlapping kernels: y[n,o,i*s+a,j*s+b] = sum_c x[n,c,i,j] w[c,o,a,b] + bias[o].
-    int64_t n = x.size(0), ci = x.size(1), h = x.size(2), wd = x.size(3), co = w.size(1), kh = kernel[0], kw = kernel[1];
-    at::Tensor xt = x.permute({0, 2, 3, 1}).reshape({n * h * wd, ci});
-    at::Tensor y = batched_matmul(xt, w.reshape({ci, co * kh * kw}));
-    y = y.reshape({n, h, wd, co, kh, kw}).permute({0, 3, 1, 4, 2, 5}).reshape({n, co, h * kh, wd * kw});
-    if (b.defined()) y = y + b.reshape({1, co, 1, 1});
-    c.out = {y};
+    c.out = {conv_transpose_blocks(x, w, b)};  // non-overlapping kernels: a matrix product
     return;
   }
   if (begin == end) {
@@ -607,6 +601,16 @@ void op_transpose(Ctx& c) {
   if (perm.empty())
     for (int64_t i = x.dim() - 1; i >= 0; --i) perm.push_back(i);
   if (int64_t(perm.size()) != x.dim()) throw OpError("perm length does not match rank " + std::to_string(x.dim()));
+  // A large swap of the last two axes (SAM's decoder: the image embedding as [1, 4096, 256]
+  // tokens) is copied once: elementwise ops, layer norms and linears read it several times,
+  // each far slower on the transposed view (and adds pass its strides on to their results).
+  bool swap_last = x.dim() >= 2 && x.scalar_type() == at::kFloat && x.is_contiguous() && x.numel() >= (1 << 16) &&
+                   perm[size_t(x.dim() - 1)] == x.dim() - 2 && perm[size_t(x.dim() - 2)] == x.dim() - 1;
+  for (int64_t i = 0; i + 2 < x.dim(); ++i) swap_last = swap_last && perm[size_t(i)] == i;
+  if (swap_last) {
+    c.out = {transpose_last_two(x)};
+    return;
+  }
   c.out = {x.permute(perm)};
 }
 
@@ -1119,21 +1123,26 @@ struct OnnxGraph::Impl {
   }
 };
 
-OnnxGraph::OnnxGraph(const std::string& path, const TapRule& taps) : impl_(std::make_unique<Impl>()) {
+OnnxGraph::OnnxGraph(const std::string& path, const OutputRule& rule) : impl_(std::make_unique<Impl>()) {
   use_tensor_memory_pool();
   c10::InferenceMode guard;
   Impl& m = *impl_;
   m.model = load_onnx(path);
-  if (taps)
-    for (const std::string& name : taps(m.model)) {
-      bool produced = false;
-      for (const Node& n : m.model.nodes)
-        produced = produced || std::find(n.outputs.begin(), n.outputs.end(), name) != n.outputs.end();
-      if (!produced) throw Error(path, "no node produces the value '" + name + "' asked to be returned");
-      bool known = false;
-      for (const auto& v : m.model.outputs) known = known || v.name == name;
-      if (!known) m.model.outputs.push_back(ValueInfo{name, DType::Float32, {}, {}});
-    }
+  const OutputChoice choice = rule ? rule(m.model) : OutputChoice{};
+  for (const std::string& name : choice.taps) {
+    bool produced = false;
+    for (const Node& n : m.model.nodes)
+      produced = produced || std::find(n.outputs.begin(), n.outputs.end(), name) != n.outputs.end();
+    if (!produced) throw Error(path, "no node produces the value '" + name + "' asked to be returned");
+    bool known = false;
+    for (const auto& v : m.model.outputs) known = known || v.name == name;
+    if (!known) m.model.outputs.push_back(ValueInfo{name, DType::Float32, {}, {}});
+  }
+  for (const std::string& name : choice.unread) {
+    bool known = false;
+    for (const auto& v : m.model.outputs) known = known || v.name == name;
+    if (!known) throw Error(path, "the graph has no output '" + name + "' to leave unread");
+  }
   const auto& reg = registry();
   for (const Node& n : m.model.nodes) {
     if (!(n.domain.empty() || n.domain == "ai.onnx") || !reg.count(n.op_type))
@@ -1168,8 +1177,27 @@ OnnxGraph::OnnxGraph(const std::string& path, const TapRule& taps) : impl_(std::
     }
     m.steps.push_back({&n, &fn, ins, outs, {}});
   }
-  for (const auto& v : m.model.outputs) m.output_slots.emplace_back(v.name, m.slot(v.name));
+  for (const auto& v : m.model.outputs)
+    if (std::find(choice.unread.begin(), choice.unread.end(), v.name) == choice.unread.end())
+      m.output_slots.emplace_back(v.name, m.slot(v.name));
   m.fuse();
+  // Keep only the steps that some returned output needs.
+  std::vector<char> needed(size_t(m.slots), 0);
+  for (const auto& [name, s] : m.output_slots) needed[size_t(s)] = 1;
+  std::vector<char> keep(m.steps.size(), 0);
+  for (size_t i = m.steps.size(); i-- > 0;) {
+    for (int s : m.steps[i].out) keep[i] = keep[i] || (s >= 0 && needed[size_t(s)]);
+    if (keep[i])
+      for (int s : m.steps[i].in)
+        if (s >= 0) needed[size_t(s)] = 1;
+  }
+  size_t kept = 0;
+  for (size_t i = 0; i < m.steps.size(); ++i)
+    if (keep[i]) {
+      if (kept != i) m.steps[kept] = std::move(m.steps[i]);
+      ++kept;
+    }
+  m.steps.resize(kept);
   // Free each runtime value after its last use (graph outputs are kept).
   std::vector<int> last_use(m.slots, -1);
   for (size_t i = 0; i < m.steps.size(); ++i)

@@ -28,11 +28,17 @@ int threads_of_this_thread();
 
 class OnnxGraph {
  public:
-  // `taps` (optional) names values computed inside the graph that run() returns beside the
-  // graph outputs (appended to outputs()), chosen by a rule over the loaded model: e.g. a
-  // decoder's scores before the graph keeps only the best. A name no node produces is an error.
-  using TapRule = std::function<std::vector<std::string>(const OnnxModel&)>;
-  explicit OnnxGraph(const std::string& path, const TapRule& taps = nullptr);
+  // What run() returns, chosen by a rule over the loaded model (optional):
+  // `taps` names values computed inside the graph, returned beside the graph outputs
+  // (appended to outputs()): e.g. a decoder's scores before the graph keeps only the best.
+  // A name no node produces is an error. `unread` names graph outputs the caller never
+  // reads: they stay in outputs() but are not returned, and nodes that only they need
+  // are not run.
+  struct OutputChoice {
+    std::vector<std::string> taps, unread;
+  };
+  using OutputRule = std::function<OutputChoice(const OnnxModel&)>;
+  explicit OnnxGraph(const std::string& path, const OutputRule& rule = nullptr);
   ~OnnxGraph();
   OnnxGraph(const OnnxGraph&) = delete;
   OnnxGraph& operator=(const OnnxGraph&) = delete;
@@ -44,7 +50,8 @@ class OnnxGraph {
   std::vector<std::string> op_types() const;
   size_t node_count() const;  // nodes left after folding
 
-  // Runs the graph. `feeds` must hold every graph input; returns every graph output.
+  // Runs the graph. `feeds` must hold every graph input; returns every graph output but
+  // the unread ones, and the taps.
   std::map<std::string, HostTensor> run(const std::map<std::string, HostTensor>& feeds) const;
 
   // Every operator type the executor implements (default ONNX domain).

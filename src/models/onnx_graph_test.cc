@@ -376,6 +376,66 @@ TEST(OnnxGraph, MatMulBroadcastsBatchesAndReadsTransposedOperands) {
         }
 }
 
+// A large swap of the last two axes is copied by the executor's blocked kernel (sizes
+// that are not multiples of its block, two batch items): the same values as the view.
+TEST(OnnxGraph, LargeTransposeOfTheLastTwoAxes) {
+  const int64_t b = 2, m = 37, n = 2003;  // 148,222 values: above the copy's threshold
+  Builder g;
+  g.input("x", {b, m, n});
+  g.output("y");
+  attr_ints(g.node("Transpose", {"x"}, {"y"}), "perm", {0, 2, 1});
+  Graph graph(g);
+  std::vector<float> x = noise(b * m * n, 5);
+  auto out = graph.g->run({{"x", HostTensor::from_floats({b, m, n}, x)}});
+  ASSERT_EQ(out["y"].shape, (std::vector<int64_t>{b, n, m}));
+  std::vector<float> y = floats_of(out["y"]);
+  size_t wrong = 0;
+  for (int64_t k = 0; k < b; ++k)
+    for (int64_t i = 0; i < m; ++i)
+      for (int64_t j = 0; j < n; ++j) wrong += y[size_t((k * n + j) * m + i)] != x[size_t((k * m + i) * n + j)];
+  EXPECT_EQ(wrong, 0u);
+}
+
+// SAM's output upscaling: ConvTranspose with kernel = stride, on an NCHW input and on a
+// transposed NHWC view (as the decoder feeds it), against the definition summed here.
+TEST(OnnxGraph, ConvTransposeWithKernelEqualToStride) {
+  const int n = 2, ci = 3, h = 2, w = 3, co = 2, k = 2;
+  for (bool nhwc : {false, true}) {
+    Builder b;
+    std::vector<float> x = noise(n * ci * h * w, 3), wt = noise(ci * co * k * k, 4), bias = {0.25f, -1.5f};
+    if (nhwc) {
+      b.input("x", {n, h, w, ci});
+      attr_ints(b.node("Transpose", {"x"}, {"xt"}), "perm", {0, 3, 1, 2});
+    } else {
+      b.input("xt", {n, ci, h, w});
+    }
+    b.floats("w", {ci, co, k, k}, wt);
+    b.floats("bias", {co}, bias);
+    b.output("y");
+    auto* node = b.node("ConvTranspose", {"xt", "w", "bias"}, {"y"});
+    attr_ints(node, "strides", {k, k});
+    attr_ints(node, "kernel_shape", {k, k});
+    Graph g(b);
+    auto out = g.g->run({{nhwc ? "x" : "xt", HostTensor::from_floats(nhwc ? std::vector<int64_t>{n, h, w, ci}
+                                                                           : std::vector<int64_t>{n, ci, h, w},
+                                                                      x)}});
+    ASSERT_EQ(out["y"].shape, (std::vector<int64_t>{n, co, h * k, w * k}));
+    std::vector<float> y = floats_of(out["y"]);
+    auto in = [&](int b_, int c, int i, int j) {
+      return double(nhwc ? x[size_t(((b_ * h + i) * w + j) * ci + c)] : x[size_t(((b_ * ci + c) * h + i) * w + j)]);
+    };
+    for (int b_ = 0; b_ < n; ++b_)
+      for (int o = 0; o < co; ++o)
+        for (int yy = 0; yy < h * k; ++yy)
+          for (int xx = 0; xx < w * k; ++xx) {
+            double want = bias[size_t(o)];
+            for (int c = 0; c < ci; ++c)
+              want += in(b_, c, yy / k, xx / k) * double(wt[size_t(((c * co + o) * k + yy % k) * k + xx % k)]);
+            EXPECT_NEAR(y[size_t(((b_ * co + o) * h * k + yy) * w * k + xx)], want, 1e-5) << (nhwc ? "NHWC" : "NCHW");
+          }
+  }
+}
+
 // TinyViT's window attention (opset 12): MatMul(q, kT) -> Mul(scale) -> Add(bias) ->
 // Softmax(axis 3) -> MatMul(v) becomes one FusedAttention step with the same result.
 TEST(OnnxGraph, FusesWindowAttentionWithScaleAndBias) {

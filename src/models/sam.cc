@@ -423,14 +423,14 @@ void candidates_before_selection(const std::vector<std::string>& taps, int input
   c.mask_index = 0;
   for (size_t i = 0; i < group.size(); ++i) {
     const float* logits = all + size_t(group[i]) * plane;
-    c.candidates.push_back(candidate_mask(logits, low, tx, ty));
     c.candidate_scores.push_back(pred[size_t(group[i])]);
     c.candidate_low_res.emplace_back(logits, logits + plane);
     if (pred[size_t(group[i])] > pred[size_t(group[c.mask_index])]) c.mask_index = int(i);
   }
-  // The graph's own mask for its choice (the same upsampling, computed by the graph).
   if (c.candidate_low_res[size_t(c.mask_index)] != r.low_res_logits) return;  // not the pattern assumed
-  c.candidates[size_t(c.mask_index)] = r.mask;
+  // The choice's mask is already made (by the graph, or by the same upsampling).
+  for (size_t i = 0; i < group.size(); ++i)
+    c.candidates.push_back(int(i) == c.mask_index ? r.mask : candidate_mask(c.candidate_low_res[i].data(), low, tx, ty));
   r.mask_index = c.mask_index;
   r.candidates = std::move(c.candidates);
   r.candidate_scores = std::move(c.candidate_scores);
@@ -446,6 +446,7 @@ struct SamModel::Impl {
   std::string model_id;
   int input_size = 1024;
   std::vector<std::string> taps;  // a single-mask decoder's candidates and their predictions
+  bool upsample_here = false;     // masks made from the tapped low-res candidates, not by the graph
 };
 
 SamModel::SamModel(const std::string& encoder_onnx, const std::string& decoder_onnx, int threads)
@@ -453,8 +454,20 @@ SamModel::SamModel(const std::string& encoder_onnx, const std::string& decoder_o
   configure_threads(threads);
   impl_->encoder = std::make_unique<OnnxGraph>(encoder_onnx);
   impl_->decoder = std::make_unique<OnnxGraph>(decoder_onnx, [this](const OnnxModel& m) {
-    impl_->taps = single_mask_taps(m);
-    return impl_->taps;
+    OnnxGraph::OutputChoice choice;
+    impl_->taps = choice.taps = single_mask_taps(m);
+    // With every candidate's low-res logits tapped, the masks are upsampled here (one pass
+    // per candidate, as mask_from_low_res): the graph's own upsampling of its choice (two
+    // bilinear resizes through a 1024 x 1024 image) is not run.
+    bool named = !impl_->taps.empty();
+    for (const char* name : {"masks", "iou_predictions", "low_res_masks"}) {
+      bool found = false;
+      for (const auto& v : m.outputs) found = found || v.name == name;
+      named = named && found;
+    }
+    impl_->upsample_here = named;
+    if (named) choice.unread = {"masks"};
+    return choice;
   });
   const auto& ins = impl_->encoder->inputs();
   if (ins.size() != 1 || ins[0].dims.size() != 4 || (ins[0].dims[1] != 3 && ins[0].dims[1] != -1))
@@ -592,46 +605,50 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
   feeds["has_mask_input"] = make_input(info("has_mask_input"), {1}, {has_mask ? 1.f : 0.f});
   feeds["orig_im_size"] = make_input(info("orig_im_size"), {2}, {float(emb.image_height), float(emb.image_width)});
   auto outs = dec.run(feeds);
-  const HostTensor& masks = output(outs, dec, "masks", 0);
   const HostTensor& ious = output(outs, dec, "iou_predictions", 1);
   const HostTensor& low = output(outs, dec, "low_res_masks", 2);
-  if (masks.shape.size() != 4 || masks.shape[2] != emb.image_height || masks.shape[3] != emb.image_width)
-    throw Error(dec.path(), "masks output is " + masks.describe() + ", expected [1,K," + std::to_string(emb.image_height) +
-                                "," + std::to_string(emb.image_width) + "]");
-  if (low.shape.size() != 4 || low.shape[1] != masks.shape[1])
-    throw Error(dec.path(), "low_res_masks output is " + low.describe());
+  if (low.shape.size() != 4 || low.shape[0] != 1 || low.shape[2] != low.shape[3])
+    throw Error(dec.path(), "low_res_masks output is " + low.describe() + ", expected [1,K,L,L]");
   std::vector<float> iou = as_floats(ious, "iou_predictions");
-  int64_t k = masks.shape[1];
+  const int64_t k = low.shape[1];
   if (int64_t(iou.size()) != k) throw Error(dec.path(), "iou_predictions is " + ious.describe());
-  int best = int(std::max_element(iou.begin(), iou.end()) - iou.begin());
-  SegmentResult r;
-  r.mask_index = best;
-  r.score = iou[best];
-  r.mask = Image(emb.image_width, emb.image_height, 1);
-  if (masks.dtype == DType::Float32) {
-    const float* m = masks.data<float>() + size_t(best) * emb.image_width * emb.image_height;
-    for (size_t i = 0; i < r.mask.data.size(); ++i) r.mask.data[i] = m[i] > 0.f ? 1.f : 0.f;
-  } else if (masks.dtype == DType::Bool) {
-    const uint8_t* m = masks.data<uint8_t>() + size_t(best) * emb.image_width * emb.image_height;
-    for (size_t i = 0; i < r.mask.data.size(); ++i) r.mask.data[i] = m[i] ? 1.f : 0.f;
-  } else {
-    throw Error(dec.path(), "masks output is " + masks.describe());
+  // The masks at image size: the graph's, or upsampled here from the low-res logits.
+  const HostTensor* masks = nullptr;
+  if (!impl_->upsample_here) {
+    masks = &output(outs, dec, "masks", 0);
+    if (masks->shape.size() != 4 || masks->shape[1] != k || masks->shape[2] != emb.image_height ||
+        masks->shape[3] != emb.image_width)
+      throw Error(dec.path(), "masks output is " + masks->describe() + ", expected [1," + std::to_string(k) + "," +
+                                  std::to_string(emb.image_height) + "," + std::to_string(emb.image_width) + "]");
+    if (masks->dtype != DType::Float32 && masks->dtype != DType::Bool)
+      throw Error(dec.path(), "masks output is " + masks->describe());
   }
-  r.low_res_size = int(low.shape[3]);
+  const int lw = int(low.shape[3]);
+  const AxisTaps tx = mask_axis_taps(lw, impl_->input_size, emb.resized_width, emb.image_width);
+  const AxisTaps ty = mask_axis_taps(lw, impl_->input_size, emb.resized_height, emb.image_height);
   std::vector<float> lowf = as_floats(low, "low_res_masks");
-  size_t plane = size_t(low.shape[2]) * low.shape[3];
-  r.low_res_logits.assign(lowf.begin() + best * plane, lowf.begin() + (best + 1) * plane);
+  const size_t plane = size_t(lw) * lw;
+  SegmentResult r;
+  r.mask_index = int(std::max_element(iou.begin(), iou.end()) - iou.begin());
+  r.score = iou[size_t(r.mask_index)];
+  r.low_res_size = lw;
   for (int64_t c = 0; c < k; ++c) {
-    Image cand(emb.image_width, emb.image_height, 1);
-    const size_t off = size_t(c) * emb.image_width * emb.image_height;
-    if (masks.dtype == DType::Float32)
-      for (size_t i = 0; i < cand.data.size(); ++i) cand.data[i] = masks.data<float>()[off + i] > 0.f ? 1.f : 0.f;
-    else
-      for (size_t i = 0; i < cand.data.size(); ++i) cand.data[i] = masks.data<uint8_t>()[off + i] ? 1.f : 0.f;
-    r.candidates.push_back(std::move(cand));
+    if (masks) {
+      Image cand(emb.image_width, emb.image_height, 1);
+      const size_t off = size_t(c) * emb.image_width * emb.image_height;
+      if (masks->dtype == DType::Float32)
+        for (size_t i = 0; i < cand.data.size(); ++i) cand.data[i] = masks->data<float>()[off + i] > 0.f ? 1.f : 0.f;
+      else
+        for (size_t i = 0; i < cand.data.size(); ++i) cand.data[i] = masks->data<uint8_t>()[off + i] ? 1.f : 0.f;
+      r.candidates.push_back(std::move(cand));
+    } else {
+      r.candidates.push_back(candidate_mask(lowf.data() + size_t(c) * plane, lw, tx, ty));
+    }
     r.candidate_scores.push_back(iou[size_t(c)]);
     r.candidate_low_res.emplace_back(lowf.begin() + c * plane, lowf.begin() + (c + 1) * plane);
   }
+  r.mask = r.candidates[size_t(r.mask_index)];
+  r.low_res_logits = r.candidate_low_res[size_t(r.mask_index)];
   if (k == 1 && impl_->taps.size() == 2) candidates_before_selection(impl_->taps, impl_->input_size, outs, n, emb, r);
   if (timings) timings->decoder_ms = now_ms() - t0;
   return r;
