@@ -52,7 +52,7 @@ TEST(VirtualViews, EveryLayoutLooksAtTheCentreAndSeesTheScene) {
       const Camera& c = cams[k];
       c.validate("virtual");
       EXPECT_EQ(c.width, 320);
-      char want[16];
+      char want[32];  // room for any size_t
       std::snprintf(want, sizeof(want), "virtual_%03zu", k);
       EXPECT_EQ(c.name, want);
       EXPECT_EQ(c.id, int(k));

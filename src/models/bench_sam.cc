@@ -7,7 +7,6 @@
 //   sam_bench embed <image> <out.f32> [--transpose]
 //       the encoder's embedding (raw float32) for comparisons during development
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -23,10 +22,6 @@ using namespace isegman;
 using namespace isegman::models;
 
 namespace {
-
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
