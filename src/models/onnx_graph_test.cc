@@ -376,6 +376,31 @@ TEST(OnnxGraph, MatMulBroadcastsBatchesAndReadsTransposedOperands) {
         }
 }
 
+// An output the caller never reads is not returned, and the nodes only it needs are not
+// run; a value needed by both outputs still is. Naming an output the graph lacks is an error.
+TEST(OnnxGraph, UnreadOutputsAndTheNodesOnlyTheyNeedAreDropped) {
+  Builder b;
+  b.input("x", {2});
+  b.floats("one", {1}, {1.f});
+  b.output("y");
+  b.output("z");
+  b.node("Add", {"x", "one"}, {"shared"});
+  b.node("Neg", {"shared"}, {"y"});
+  b.node("Exp", {"shared"}, {"e"});
+  b.node("Mul", {"e", "e"}, {"z"});
+  const std::string path = b.save();
+  auto unread_z = [](const OnnxModel&) { return OnnxGraph::OutputChoice{{}, {"z"}}; };
+  OnnxGraph all(path), some(path, unread_z);
+  EXPECT_EQ(all.node_count(), 4u);
+  EXPECT_EQ(some.node_count(), 2u);  // Add and Neg
+  EXPECT_EQ(some.outputs().size(), 2u);  // still declared
+  auto out = some.run({{"x", HostTensor::from_floats({2}, {1, 2})}});
+  EXPECT_EQ(out.count("z"), 0u);
+  EXPECT_EQ(floats_of(out.at("y")), (std::vector<float>{-2, -3}));
+  EXPECT_THROW(OnnxGraph(path, [](const OnnxModel&) { return OnnxGraph::OutputChoice{{}, {"nope"}}; }), Error);
+  std::remove(path.c_str());
+}
+
 // A large swap of the last two axes is copied by the executor's blocked kernel (sizes
 // that are not multiples of its block, two batch items): the same values as the view.
 TEST(OnnxGraph, LargeTransposeOfTheLastTwoAxes) {
