@@ -235,7 +235,7 @@ at::Tensor conv_transpose_blocks(const at::Tensor& x0, const at::Tensor& w0, con
 }
 
 at::Tensor transpose_last_two(const at::Tensor& x) {
-  const int64_t m = x.size(-2), n = x.size(-1), batch = m * n ? x.numel() / (m * n) : 0;
+  const int64_t m = x.size(-2), n = x.size(-1), batch = m * n != 0 ? x.numel() / (m * n) : 0;
   std::vector<int64_t> shape = x.sizes().vec();
   std::swap(shape[shape.size() - 2], shape.back());
   at::Tensor y = at::empty(shape, x.options());

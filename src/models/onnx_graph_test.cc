@@ -510,6 +510,34 @@ TEST(OnnxGraph, FusesAttentionWithRuntimeDivisorAndLongRows) {
   expect_close(g.fused->run(feeds)["y"], g.plain->run(feeds)["y"], 1e-5);
 }
 
+// SAM decoder's attentions: heads of 16 values interleaved in the tokens' rows (row stride
+// heads x 16), few queries over many keys and many queries over few keys; the fused step
+// gives what the plain operators give.
+TEST(OnnxGraph, FusedAttentionOverInterleavedHeads) {
+  for (auto [queries, keys] : {std::pair<int64_t, int64_t>{9, 700}, {700, 9}}) {
+    const int64_t heads = 4, dim = 16, vdim = 12;
+    Builder b(17);
+    b.input("q", {1, queries, heads, dim});
+    b.input("k", {1, keys, heads, dim});
+    b.input("v", {1, keys, heads, vdim});
+    b.floats("scale", {}, {0.25f});
+    b.output("y");
+    attr_ints(b.node("Transpose", {"q"}, {"qh"}), "perm", {0, 2, 1, 3});
+    attr_ints(b.node("Transpose", {"k"}, {"kt"}), "perm", {0, 2, 3, 1});
+    attr_ints(b.node("Transpose", {"v"}, {"vh"}), "perm", {0, 2, 1, 3});
+    b.node("MatMul", {"qh", "kt"}, {"s"});
+    b.node("Mul", {"s", "scale"}, {"ss"});
+    attr_int(b.node("Softmax", {"ss"}, {"p"}), "axis", -1);
+    b.node("MatMul", {"p", "vh"}, {"y"});
+    FusedAndPlain g(b);
+    EXPECT_TRUE(g.has_op("FusedAttention"));
+    std::map<std::string, HostTensor> feeds = {{"q", random_tensor({1, queries, heads, dim}, 11)},
+                                               {"k", random_tensor({1, keys, heads, dim}, 12)},
+                                               {"v", random_tensor({1, keys, heads, vdim}, 13)}};
+    expect_close(g.fused->run(feeds)["y"], g.plain->run(feeds)["y"], 1e-5);
+  }
+}
+
 // Softmax before opset 13 flattens the axes from `axis` on: over axis 1 of a rank-4 score
 // tensor that is not the attention softmax, and the fused step must give what the plain
 // operators give.
