@@ -394,10 +394,10 @@ Image candidate_mask(const float* logits, int low, const AxisTaps& tx, const Axi
 }
 
 // Replaces a single-mask decoder's one candidate by every candidate SAM weighed (see
-// single_mask_taps), the graph's own mask kept for its choice.
-void candidates_before_selection(const std::vector<std::string>& taps, int input_size,
-                                 const std::map<std::string, HostTensor>& outs, int64_t prompt_points,
-                                 const SamEmbedding& emb, SegmentResult& r) {
+// single_mask_taps), the decoder's mask kept for its choice. tx / ty: the upsampling's
+// taps from r's low-res grid to the image (mask_axis_taps).
+void candidates_before_selection(const std::vector<std::string>& taps, const AxisTaps& tx, const AxisTaps& ty,
+                                 const std::map<std::string, HostTensor>& outs, int64_t prompt_points, SegmentResult& r) {
   const auto m = outs.find(taps[0]), p = outs.find(taps[1]);
   if (m == outs.end() || p == outs.end()) return;
   const HostTensor& masks = m->second;
@@ -415,8 +415,6 @@ void candidates_before_selection(const std::vector<std::string>& taps, int input
   else
     group.push_back(0);
   const int low = int(masks.shape[2]);
-  const AxisTaps tx = mask_axis_taps(low, input_size, emb.resized_width, emb.image_width);
-  const AxisTaps ty = mask_axis_taps(low, input_size, emb.resized_height, emb.image_height);
   const size_t plane = size_t(low) * low;
   const float* all = masks.data<float>();
   SegmentResult c;
@@ -649,7 +647,7 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
   }
   r.mask = r.candidates[size_t(r.mask_index)];
   r.low_res_logits = r.candidate_low_res[size_t(r.mask_index)];
-  if (k == 1 && impl_->taps.size() == 2) candidates_before_selection(impl_->taps, impl_->input_size, outs, n, emb, r);
+  if (k == 1 && impl_->taps.size() == 2) candidates_before_selection(impl_->taps, tx, ty, outs, n, r);
   if (timings) timings->decoder_ms = now_ms() - t0;
   return r;
 }
