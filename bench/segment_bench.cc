@@ -102,6 +102,8 @@ void BM_Interaction(benchmark::State& state) {
   state.counters["propagation_ms"] = last.ms_propagation;
   state.counters["sam_ms"] = last.ms_sam;
   state.counters["voting_ms"] = last.ms_voting;
+  std::printf("[interaction %d] voting %.0f ms: %s\n", int(state.range(0)), last.ms_voting,
+              segment::describe(last.voting).c_str());
   state.counters["prompted_views"] = double(last.prompted);
   state.counters["embedding_ms_per_view"] = f->embed_ms_per_view;
 }
@@ -253,13 +255,14 @@ void BM_LargeScene(benchmark::State& state) {
       "  scene generation %.0f ms; view choice %.2f ms; building the views %.0f ms without SAM + SAM "
       "encoding %.0f ms;\n  per click %.0f ms (propagation %.1f, SAM %.0f, voting %.0f; %zu selected; %d/%d views "
       "accepted);\n  views' resident memory %.0f MB (%.0f MB a view), peak RSS %.0f MB%s (up to the first click %.0f MB, "
-      "later clicks %.0f MB);\n  result hash: first click %016llx, later clicks %016llx\n",
+      "later clicks %.0f MB);\n  result hash: first click %016llx, later clicks %016llx\n  voting of the last click: %s\n",
       demo.bundle.gaussians.size(), demo.bundle.cameras.size(), opt.width, opt.height, t.views, ms_load,
       load_peak_mb, loaded_mb, load_peak_mb / loaded_mb, ms_scene,
       t.ms_selection, views_ms_no_sam, t.ms_embedding, n ? ms_clicks / n : 0, last.ms_propagation, last.ms_sam,
       last.ms_voting, last.selected, last.accepted, t.views, rss_views - rss_scene,
       (rss_views - rss_scene) / std::max(1, t.views), peak_mb, peak_from_load ? " (from the load on)" : "",
-      peak_first_mb, peak_clicks_mb, static_cast<unsigned long long>(first_hash), static_cast<unsigned long long>(hash));
+      peak_first_mb, peak_clicks_mb, static_cast<unsigned long long>(first_hash), static_cast<unsigned long long>(hash),
+      segment::describe(last.voting).c_str());
   std::fflush(stdout);
   fs::remove_all(vo.cache_dir);
 }

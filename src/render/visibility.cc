@@ -90,7 +90,8 @@ size_t frame_bytes(const PreparedFrame& frame) {
 }
 
 GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const RenderSettings& settings,
-                            const std::vector<float>* values, Image* value_image, bool all_tiles) {
+                            const std::vector<float>* values, Image* value_image, ValueExtent extent) {
+  const bool all_tiles = extent == ValueExtent::kAllTiles;
   const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
   const int gx = frame.grid_x, gy = frame.grid_y, W = frame.camera.width, H = frame.camera.height;
   const size_t tiles = size_t(gx) * gy;
@@ -143,7 +144,8 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     pass.tile_mask = &raster;
     pass.sum_mask = mask;
     pass.sum_tiles = &summed;
-    pass.sum_pixels_only = mask && !values;  // no image is returned: only the mask's pixels matter
+    // Only the mask's pixels matter when no image is returned, or only its pixels are asked for.
+    pass.sum_pixels_only = mask && (!values || extent == ValueExtent::kMaskPixels);
     pass.on_tile = [&](int w, size_t t, const uint32_t* entry_sums, const uint8_t*) { add_pairs(w, t, entry_sums); };
     RenderOutput r = run_tiles(frame, rs, pass);
     if (values && value_image) *value_image = std::move(r.value);

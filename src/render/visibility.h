@@ -37,12 +37,16 @@ bool is_compact(const PreparedFrame& frame);
 // Bytes the frame holds.
 size_t frame_bytes(const PreparedFrame& frame);
 
+// Where weight_sums renders `values` (0 elsewhere): over the tiles the mask touches, over
+// every tile, or at the mask's pixels only (its partly covered tiles then blend only those
+// pixels, as the sums alone do: a pixel's blend does not depend on the other pixels).
+enum class ValueExtent { kMaskTiles, kAllTiles, kMaskPixels };
+
 // Weights summed over the pixels where mask > 0.5 (mask at the frame's resolution, one
 // channel), or over every pixel without a mask. With `values` (one per Gaussian) the
-// same pass renders their blend into `value_image` over the tiles the mask touches (all
-// tiles with `all_tiles`), as rasterize() does.
+// same pass renders their blend into `value_image` over `extent`, as rasterize() does.
 GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const RenderSettings& settings,
                             const std::vector<float>* values = nullptr, Image* value_image = nullptr,
-                            bool all_tiles = false);
+                            ValueExtent extent = ValueExtent::kMaskTiles);
 
 }  // namespace isegman

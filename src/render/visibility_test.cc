@@ -148,9 +148,18 @@ TEST(Visibility, SumsMatchTheRoundedWeightsOfEveryPixel) {
   for (size_t i = 0; i < values.size(); ++i) values[i] = (i % 3 == 0) ? 1.f : 0.f;
   const Image expected = rasterize(plain, {}, &values).value;
   Image covered;
-  expect_same(weight_sums(compact, &mask, {}, &values, &covered, true), masked);
+  expect_same(weight_sums(compact, &mask, {}, &values, &covered, ValueExtent::kAllTiles), masked);
   EXPECT_EQ(covered.data, expected.data);
-  expect_same(weight_sums(compact, &mask, {}, &values, &covered, false), masked);
+  // At the mask's pixels only: the same values there, 0 elsewhere.
+  Image at_mask;
+  expect_same(weight_sums(compact, &mask, {}, &values, &at_mask, ValueExtent::kMaskPixels), masked);
+  int inside = 0;
+  for (size_t p = 0; p < at_mask.data.size(); ++p) {
+    ASSERT_EQ(at_mask.data[p], mask.data[p] > 0.5f ? expected.data[p] : 0.f) << "pixel " << p;
+    inside += mask.data[p] > 0.5f && expected.data[p] > 0.f;
+  }
+  EXPECT_GT(inside, 100);
+  expect_same(weight_sums(compact, &mask, {}, &values, &covered, ValueExtent::kMaskTiles), masked);
   int outside = 0;
   for (int y = 0; y < cam.height; ++y)
     for (int x = 0; x < cam.width; ++x) {

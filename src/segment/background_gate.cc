@@ -4,15 +4,18 @@
 #include <array>
 #include <cmath>
 
+#include "core/parallel.h"
 #include "core/random.h"
 
 namespace isegman::segment {
 
 namespace {
 
-struct Estimates {
-  std::vector<float> sum, lo, hi;
-  std::vector<uint8_t> count;
+// What the lines of one direction give.
+struct LineEstimates {
+  // (pixel, inverse depth) interpolated in a run: a pixel lies on one line of each
+  // direction and in at most one run of it, so it appears at most once.
+  std::vector<std::pair<uint32_t, float>> values;
   // Every usable sample at a run's end, nearer than the target or not: (pixel, inverse
   // depth), the ring the surroundings' plane is fitted to.
   std::vector<std::pair<uint32_t, float>> ring;
@@ -21,7 +24,7 @@ struct Estimates {
 // One line of pixels (in order along the direction): every run of mask pixels gets the
 // inverse depth interpolated between the usable outside samples at both of its ends.
 void interpolate_line(const std::vector<uint32_t>& line, const Image& mask, const Image& depth, const Image& alpha,
-                      double near_limit, const BackgroundOptions& o, int max_span, Estimates& e) {
+                      double near_limit, const BackgroundOptions& o, int max_span, LineEstimates& e) {
   const size_t n = line.size();
   auto inside = [&](size_t i) { return mask.data[line[i]] > 0.5f; };
   auto inverse = [&](long i, double limit) -> float {
@@ -66,12 +69,7 @@ void interpolate_line(const std::vector<uint32_t>& line, const Image& mask, cons
       const double span = double(b - a);
       for (size_t k = i; k < j; ++k) {
         const double t = double(long(k) - a) / span;
-        const float v = float((1 - t) * s0 + t * s1);
-        const uint32_t p = line[k];
-        e.sum[p] += v;
-        e.lo[p] = std::min(e.lo[p], v);
-        e.hi[p] = std::max(e.hi[p], v);
-        ++e.count[p];
+        e.values.push_back({line[k], float((1 - t) * s0 + t * s1)});
       }
     }
     i = j;
@@ -214,24 +212,38 @@ double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVo
              double(votes.weight[k])};
     total += dw[k].second;
   }
-  std::sort(dw.begin(), dw.end());
-  double acc = 0;
-  for (const auto& [d, w] : dw) {
-    acc += w;
-    if (acc >= share * total) return d;
+  if (dw.empty()) return 0.0;
+  // The first entry in (depth, weight) order whose running weight reaches the target, as a
+  // walk over the sorted list would find it, by selection instead of a sort (linear: a
+  // large scene's mask holds ~10^6 Gaussians a view). The weights are whole numbers of
+  // fixed-point units, so their sums are exact in any order.
+  const double target = share * total;
+  size_t lo = 0, hi = dw.size();
+  double before = 0;  // the weight of the entries ordered before dw[lo]
+  double found = std::max_element(dw.begin(), dw.end())->first;
+  while (lo < hi) {
+    const size_t mid = lo + (hi - lo) / 2;
+    std::nth_element(dw.begin() + std::ptrdiff_t(lo), dw.begin() + std::ptrdiff_t(mid), dw.begin() + std::ptrdiff_t(hi));
+    double through = before;
+    for (size_t k = lo; k <= mid; ++k) through += dw[k].second;
+    if (through >= target) {
+      found = dw[mid].first;
+      hi = mid;
+    } else {
+      before = through;
+      lo = mid + 1;
+    }
   }
-  return dw.empty() ? 0.0 : dw.back().first;
+  return found;
 }
 
 Image background_inverse_depth(const Image& mask, const Image& depth, const Image& alpha, double near_limit,
-                               const BackgroundOptions& o) {
+                               const BackgroundOptions& o, int threads) {
   const int w = mask.width, h = mask.height;
   Image out(w, h, 1);
   const size_t npx = size_t(w) * h;
   if (w == 0 || h == 0 || depth.data.size() != npx || alpha.data.size() != npx) return out;
   const int max_span = o.max_span > 0 ? o.max_span : std::max(w, h) * 2;
-  Estimates e{std::vector<float>(npx, 0.f), std::vector<float>(npx, 1e30f), std::vector<float>(npx, -1e30f),
-              std::vector<uint8_t>(npx, 0), {}};
   // Only the mask's bounding box, widened by the farthest pixel a sample reads, matters:
   // lines are walked within it (the same result as over the whole image, for less work).
   // The same pass gives the mask's centre, around which the plane's sides are counted.
@@ -248,29 +260,57 @@ Image background_inverse_depth(const Image& mask, const Image& depth, const Imag
   const int reach = 1 + o.skip + 2 * std::max(0, o.extent);
   const int x0 = std::max(0, bx0 - reach), y0 = std::max(0, by0 - reach);
   const int x1 = std::min(w - 1, bx1 + reach), y1 = std::min(h - 1, by1 + reach);
-  std::vector<uint32_t> line;
-  auto walk = [&](int x, int y, int dx, int dy) {
-    line.clear();
-    for (; x >= x0 && y >= y0 && x <= x1 && y <= y1; x += dx, y += dy)
-      line.push_back(uint32_t(y) * uint32_t(w) + uint32_t(x));
-    interpolate_line(line, mask, depth, alpha, near_limit, o, max_span, e);
-  };
-  for (int y = y0; y <= y1; ++y) walk(x0, y, 1, 0);       // rows
-  for (int x = x0; x <= x1; ++x) walk(x, y0, 0, 1);       // columns
-  for (int y = y0; y <= y1; ++y) walk(x0, y, 1, 1);       // diagonals
-  for (int x = x0 + 1; x <= x1; ++x) walk(x, y0, 1, 1);
-  for (int y = y0; y <= y1; ++y) walk(x0, y, 1, -1);      // anti-diagonals
-  for (int x = x0 + 1; x <= x1; ++x) walk(x, y1, 1, -1);
-  for (size_t p = 0; p < npx; ++p) {
-    if (e.count[p] < o.min_directions) continue;
-    const float mean = e.sum[p] / float(e.count[p]);
-    if (e.hi[p] - e.lo[p] <= o.agreement * mean) out.data[p] = mean;
+  // The four directions on their own (in parallel), then combined in a fixed order: rows,
+  // columns, diagonals, anti-diagonals, so the float sums do not depend on the threads.
+  std::array<LineEstimates, 4> dir;
+  parallel_for(4, threads, [&](int, size_t d) {
+    std::vector<uint32_t> line;
+    auto walk = [&](int x, int y, int dx, int dy) {
+      line.clear();
+      for (; x >= x0 && y >= y0 && x <= x1 && y <= y1; x += dx, y += dy)
+        line.push_back(uint32_t(y) * uint32_t(w) + uint32_t(x));
+      interpolate_line(line, mask, depth, alpha, near_limit, o, max_span, dir[d]);
+    };
+    if (d == 0) {
+      for (int y = y0; y <= y1; ++y) walk(x0, y, 1, 0);  // rows
+    } else if (d == 1) {
+      for (int x = x0; x <= x1; ++x) walk(x, y0, 0, 1);  // columns
+    } else if (d == 2) {
+      for (int y = y0; y <= y1; ++y) walk(x0, y, 1, 1);  // diagonals
+      for (int x = x0 + 1; x <= x1; ++x) walk(x, y0, 1, 1);
+    } else {
+      for (int y = y0; y <= y1; ++y) walk(x0, y, 1, -1);  // anti-diagonals
+      for (int x = x0 + 1; x <= x1; ++x) walk(x, y1, 1, -1);
+    }
+  });
+  // Per pixel of the box: the sum, range and count of its directions' values.
+  const int bw = x1 - x0 + 1;
+  const size_t box = size_t(bw) * size_t(y1 - y0 + 1);
+  std::vector<float> sum(box, 0.f), lo(box, 1e30f), hi(box, -1e30f);
+  std::vector<uint8_t> count(box, 0);
+  std::vector<std::pair<uint32_t, float>> ring;
+  for (const LineEstimates& e : dir) {
+    for (const auto& [p, v] : e.values) {
+      const size_t b = size_t(int(p / uint32_t(w)) - y0) * size_t(bw) + size_t(int(p % uint32_t(w)) - x0);
+      sum[b] += v;
+      lo[b] = std::min(lo[b], v);
+      hi[b] = std::max(hi[b], v);
+      ++count[b];
+    }
+    ring.insert(ring.end(), e.ring.begin(), e.ring.end());
   }
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const size_t b = size_t(y - y0) * size_t(bw) + size_t(x - x0);
+      if (count[b] < o.min_directions) continue;
+      const float mean = sum[b] / float(count[b]);
+      if (hi[b] - lo[b] <= o.agreement * mean) out.data[size_t(y) * size_t(w) + size_t(x)] = mean;
+    }
   // Where the lines give no estimate (a ring's hole: its lines cross the near floor in front
   // of it, which is nearer than the target), the plane the surroundings lie on, when they
   // lie on one, beyond the target's near side.
   InversePlane plane;
-  if (o.plane && area > 0 && surroundings_plane(e.ring, w, cx / area, cy / area, o, plane)) {
+  if (o.plane && area > 0 && surroundings_plane(ring, w, cx / area, cy / area, o, plane)) {
     const double far_inverse = near_limit > 0 ? 1.0 / near_limit : 1e30;
     for (int y = by0; y <= by1; ++y)
       for (int x = bx0; x <= bx1; ++x) {
@@ -285,29 +325,37 @@ Image background_inverse_depth(const Image& mask, const Image& depth, const Imag
 
 size_t gate_background(const GaussianScene& scene, const Camera& camera, const Image& background,
                        const BackgroundTarget& target, ViewVotes& positive, ViewVotes& neutral,
-                       const BackgroundOptions& o) {
+                       const BackgroundOptions& o, int threads) {
   // Each Gaussian's centre against the surface estimate at its pixel: its inverse depth
   // relative to the surface's, minus 1 (> 0: in front of it; NaN: no estimate there).
+  // Per Gaussian and independent, so in parallel chunks (the two passes below).
   const size_t n = positive.index.size();
+  const int workers = n >= (1 << 16) ? threads : 1;
   std::vector<double> offset(n, std::nan(""));
+  std::vector<float> pixel(2 * n, -1.f);  // where the centre projects
   std::vector<uint8_t> at_seed(n, 0);
-  std::vector<std::pair<double, double>> seed_offsets;  // (offset, weight) of the clicked Gaussians
-  for (size_t k = 0; k < n; ++k) {
-    const uint32_t g = positive.index[k];
-    const Vec3 c = camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]});
-    if (c.z <= 0) continue;
-    const double u = camera.fx * c.x / c.z + camera.cx, v = camera.fy * c.y / c.z + camera.cy;
-    if (u >= 0 && v >= 0 && u < background.width && v < background.height) {
-      const float bg = background.at(int(u), int(v));
-      if (bg > 0) offset[k] = (1.0 / c.z) / bg - 1;
-    }
-    for (const BackgroundTarget::Seed& seed : target.seeds)
-      if (std::abs(u - seed.x) <= o.seed_radius && std::abs(v - seed.y) <= o.seed_radius) {
-        at_seed[k] = 1;
-        if (!std::isnan(offset[k])) seed_offsets.push_back({offset[k], double(positive.weight[k])});
-        break;
+  parallel_chunks(n, 1 << 15, workers, [&](int, size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) {
+      const uint32_t g = positive.index[k];
+      const Vec3 c = camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]});
+      if (c.z <= 0) continue;
+      const double u = camera.fx * c.x / c.z + camera.cx, v = camera.fy * c.y / c.z + camera.cy;
+      if (u >= 0 && v >= 0 && u < background.width && v < background.height) {
+        const float bg = background.at(int(u), int(v));
+        if (bg > 0) offset[k] = (1.0 / c.z) / bg - 1;
+        pixel[2 * k] = float(int(u));
+        pixel[2 * k + 1] = float(int(v));
       }
-  }
+      for (const BackgroundTarget::Seed& seed : target.seeds)
+        if (std::abs(u - seed.x) <= o.seed_radius && std::abs(v - seed.y) <= o.seed_radius) {
+          at_seed[k] = 1;
+          break;
+        }
+    }
+  });
+  std::vector<std::pair<double, double>> seed_offsets;  // (offset, weight) of the clicked Gaussians
+  for (size_t k = 0; k < n; ++k)
+    if (at_seed[k] && !std::isnan(offset[k])) seed_offsets.push_back({offset[k], double(positive.weight[k])});
   // A target only just in front of the background (slats 6 cm before a wall 4 m away lie
   // ~0.8 % nearer in inverse depth) would count as lying on it: the tolerance shrinks to
   // half the clicked Gaussians' (weighted median) offset, when that is at least min_tolerance
@@ -325,16 +373,18 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
       }
     if (median >= 2 * o.min_tolerance && median <= o.tolerance) tolerance = 0.5 * median;
   }
+  std::vector<uint8_t> behind_surface(n, 0);
+  parallel_chunks(n, 1 << 15, workers, [&](int, size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k)
+      if (!std::isnan(offset[k]) && offset[k] <= tolerance)  // an estimate there: the centre projects in the frame
+        behind_surface[k] = !crosses_surface(scene, camera, background, positive.index[k], int(pixel[2 * k]),
+                                             int(pixel[2 * k + 1]), o.min_alignment);
+  });
   ViewVotes kept, moved;
   double selected = 0, selected_moved = 0, at_seeds = 0, at_seeds_moved = 0;
   for (size_t k = 0; k < n; ++k) {
     const uint32_t g = positive.index[k];
-    bool behind = false;
-    if (!std::isnan(offset[k]) && offset[k] <= tolerance) {
-      const Vec3 c = camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]});
-      const double u = camera.fx * c.x / c.z + camera.cx, v = camera.fy * c.y / c.z + camera.cy;
-      behind = !crosses_surface(scene, camera, background, g, int(u), int(v), o.min_alignment);
-    }
+    const bool behind = behind_surface[k];
     if (at_seed[k]) {
       at_seeds += double(positive.weight[k]);
       if (behind) at_seeds_moved += double(positive.weight[k]);

@@ -50,9 +50,9 @@ double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVo
 // outside the mask on both sides (rendered: alpha > 0.5, `skip` pixels past the border, not
 // nearer than `near_limit`, and at the same depth `extent` pixels further out) are interpolated linearly in inverse depth, which is exact
 // for a plane; the estimate is the mean over the lines when at least min_directions of them
-// give one and they agree.
+// give one and they agree. `threads` (0: every core) does not change the result.
 Image background_inverse_depth(const Image& mask, const Image& depth, const Image& alpha, double near_limit,
-                               const BackgroundOptions& options = {});
+                               const BackgroundOptions& options = {}, int threads = 1);
 
 // What is known of the target in the view: the clicked pixels and the current selection
 // (null before the first vote).
@@ -69,8 +69,9 @@ struct BackgroundTarget {
 // moved when that would take the target itself: most of the weight of the Gaussians centred
 // within seed_radius of a click (the object is not told from the surroundings by depth
 // here), or more than half of the selection's weight in the mask. Returns the number moved.
+// `threads` (0: every core) does not change the result.
 size_t gate_background(const GaussianScene& scene, const Camera& camera, const Image& background,
                        const BackgroundTarget& target, ViewVotes& positive, ViewVotes& neutral,
-                       const BackgroundOptions& options = {});
+                       const BackgroundOptions& options = {}, int threads = 1);
 
 }  // namespace isegman::segment

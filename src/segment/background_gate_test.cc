@@ -2,8 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
+#include <vector>
+
+#include "core/random.h"
 
 namespace isegman::segment {
 namespace {
@@ -268,6 +273,40 @@ TEST(BackgroundGate, NearDepthIsTheWeightedNearSide) {
   EXPECT_NEAR(near_depth(s.scene, s.cam, s.positive, 0.05), 2.0, 1e-6);
   EXPECT_NEAR(near_depth(s.scene, s.cam, s.positive, 0.5), 3.0, 1e-6);
   EXPECT_EQ(near_depth(s.scene, s.cam, ViewVotes{}, 0.05), 0.0);
+}
+
+TEST(BackgroundGate, NearDepthMatchesTheSortedWalk) {
+  // Many Gaussians on a few depths (ties) with uneven weights: the selection finds the same
+  // depth as walking the (depth, weight)-sorted list until the running weight reaches the share.
+  SplitMix64 rng(7);
+  for (int trial = 0; trial < 20; ++trial) {
+    GateScene s;
+    const int n = 1 + int(rng.next() % 400);
+    s.positive = ViewVotes{};
+    for (int i = 0; i < n; ++i) {
+      s.add(0, 0, 2.0 + double(rng.next() % 9) * 0.25, 0.01, 0.01, 0.01);
+      s.positive.weight.back() = int64_t(1 + rng.next() % 5000);
+    }
+    for (double share : {0.0, 0.05, 0.5, 0.97, 1.0}) {
+      std::vector<std::pair<double, double>> dw;
+      double total = 0;
+      for (size_t k = 0; k < s.positive.index.size(); ++k) {
+        const uint32_t g = s.positive.index[k];
+        dw.push_back({s.cam.world_to_camera({s.scene.positions[3 * g], s.scene.positions[3 * g + 1],
+                                             s.scene.positions[3 * g + 2]}).z,
+                      double(s.positive.weight[k])});
+        total += dw.back().second;
+      }
+      std::sort(dw.begin(), dw.end());
+      double walk = dw.back().first, run = 0;
+      for (const auto& [d, w] : dw)
+        if ((run += w) >= share * total) {
+          walk = d;
+          break;
+        }
+      EXPECT_EQ(near_depth(s.scene, s.cam, s.positive, share), walk) << "trial " << trial << " share " << share;
+    }
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/parallel.h"
 #include "render/projection.h"
 
 namespace isegman::segment {
@@ -77,28 +78,23 @@ int layer_of(const std::vector<DepthLayer>& layers, double z) {
 
 // Per-region decision (see the header). keep[k] says whether mask entry k stays positive;
 // false when the selection has no weight in the mask (nothing to decide by).
-bool keep_local_layers(const Camera& camera, const std::vector<Vec3>& centre, const std::vector<float>& depth,
+// `region[k]`: the region of entry k's centre (-1 behind the camera: no region, neutral).
+bool keep_local_layers(int gx, int gy, const std::vector<int32_t>& region, const std::vector<float>& depth,
                        const std::vector<float>& extent, const std::vector<double>& weight,
                        const std::vector<char>& selected,
-                       const DepthLayerOptions& o, std::vector<char>& keep) {
-  const int R = o.region;
-  const int gx = std::max(1, (camera.width + R - 1) / R), gy = std::max(1, (camera.height + R - 1) / R);
+                       const DepthLayerOptions& o, std::vector<char>& keep, int threads) {
   std::vector<std::vector<size_t>> members(size_t(gx) * gy);
-  for (size_t k = 0; k < centre.size(); ++k) {
-    double u = 0, v = 0;
-    if (!camera.project(centre[k], u, v)) continue;  // behind the camera: no region, neutral
-    const int rx = std::clamp(int(std::floor(u / R)), 0, gx - 1), ry = std::clamp(int(std::floor(v / R)), 0, gy - 1);
-    members[size_t(ry) * gx + rx].push_back(k);
-  }
+  for (size_t k = 0; k < region.size(); ++k)
+    if (region[k] >= 0) members[size_t(region[k])].push_back(k);
   struct Range { double lo = 1e300, hi = -1e300; bool set() const { return hi >= lo; } };
   std::vector<std::vector<DepthLayer>> layers(members.size());
   std::vector<std::vector<int>> layer_index(members.size());
   std::vector<Range> source(members.size());
   std::vector<int> distance(members.size(), -1);
-  std::vector<size_t> wave;
-  keep.assign(centre.size(), 0);
-  for (size_t r = 0; r < members.size(); ++r) {
-    if (members[r].empty()) continue;
+  keep.assign(region.size(), 0);
+  // Regions on their own, in parallel: each writes its own entries and its members' keep.
+  parallel_for(members.size(), threads, [&](int, size_t r) {
+    if (members[r].empty()) return;
     std::vector<float> z, e;
     std::vector<double> w;
     for (size_t k : members[r]) {
@@ -124,12 +120,14 @@ bool keep_local_layers(const Camera& camera, const std::vector<Vec3>& centre, co
       source[r].lo = std::min(source[r].lo, layers[r][l].near);
       source[r].hi = std::max(source[r].hi, layers[r][l].far);
     }
-    if (!source[r].set()) continue;
+    if (!source[r].set()) return;
     for (size_t i = 0; i < members[r].size(); ++i)
       if (layer_index[r][i] >= 0 && kept_layer[size_t(layer_index[r][i])]) keep[members[r][i]] = 1;
     distance[r] = 0;
-    wave.push_back(r);
-  }
+  });
+  std::vector<size_t> wave;
+  for (size_t r = 0; r < members.size(); ++r)
+    if (distance[r] == 0) wave.push_back(r);
   if (wave.empty()) return false;
   // Regions the selection does not reach take the kept depth range of the nearest regions
   // it reaches (breadth-first over the grid, a wave at a time so the order cannot matter).
@@ -168,26 +166,34 @@ bool keep_local_layers(const Camera& camera, const std::vector<Vec3>& centre, co
 
 GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewVotes& positive, ViewVotes& neutral,
                          const std::vector<double>& seed_depths, const std::vector<bool>* selection,
-                         const DepthLayerOptions& o) {
+                         const DepthLayerOptions& o, int threads) {
   GateReport rep;
   neutral = ViewVotes{};
   const size_t n = positive.index.size();
-  std::vector<Vec3> centre(n);
+  const int R = std::max(1, o.region);
+  const int gx = std::max(1, (camera.width + R - 1) / R), gy = std::max(1, (camera.height + R - 1) / R);
   std::vector<float> depth(n), extent(n);
   std::vector<double> weight(n);
   std::vector<char> selected(n, 0);
-  for (size_t k = 0; k < n; ++k) {
-    const uint32_t g = positive.index[k];
-    centre[k] = Vec3{scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]};
-    depth[k] = float(camera.world_to_camera(centre[k]).z);
-    extent[k] = depth_extent(scene, camera, g);
-    weight[k] = double(positive.weight[k]);
-    if (selection) selected[k] = (*selection)[g];
-  }
+  std::vector<int32_t> region(n, -1);
+  // Per entry, independent: chunks in parallel.
+  parallel_chunks(n, 1 << 15, n >= (1 << 16) ? threads : 1, [&](int, size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) {
+      const uint32_t g = positive.index[k];
+      const Vec3 centre{scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]};
+      depth[k] = float(camera.world_to_camera(centre).z);
+      extent[k] = depth_extent(scene, camera, g);
+      weight[k] = double(positive.weight[k]);
+      if (selection) selected[k] = (*selection)[g];
+      double u = 0, v = 0;
+      if (camera.project(centre, u, v))
+        region[k] = std::clamp(int(std::floor(v / R)), 0, gy - 1) * gx + std::clamp(int(std::floor(u / R)), 0, gx - 1);
+    }
+  });
   const std::vector<DepthLayer> layers = depth_layers(depth, weight, o, &extent);
   rep.layers = int(layers.size());
   std::vector<char> keep;
-  if (selection && o.region > 0 && keep_local_layers(camera, centre, depth, extent, weight, selected, o, keep)) {
+  if (selection && o.region > 0 && keep_local_layers(gx, gy, region, depth, extent, weight, selected, o, keep, threads)) {
     rep.local = true;
   } else {
     if (layers.size() <= 1) {

@@ -61,8 +61,9 @@ struct GateReport {
 // its local layers that hold the selection (the one holding most of it, and any that is
 // at least keep_share selected); a region the selection does not reach keeps the local
 // layers within the depth range (+- margin) kept in the nearest region it does reach.
+// `threads` (0: every core) does not change the result.
 GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewVotes& positive, ViewVotes& neutral,
                          const std::vector<double>& seed_depths, const std::vector<bool>* selection,
-                         const DepthLayerOptions& options = {});
+                         const DepthLayerOptions& options = {}, int threads = 1);
 
 }  // namespace isegman::segment

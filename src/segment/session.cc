@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
 #include "core/error.h"
@@ -23,6 +24,15 @@ const char* status_name(ViewStatus s) {
   return "?";
 }
 
+std::string describe(const VotingParts& p) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "mask votes %.0f, agreement %.0f, band %.0f, depth layers %.0f, background %.0f, accumulate %.0f, "
+                "coverage %.0f, decide %.0f",
+                p.mask_votes, p.agreement, p.band, p.depth_layers, p.background, p.accumulate, p.coverage, p.decide);
+  return line;
+}
+
 SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
   o.granularity_consensus = o.whole_neutral = false;
@@ -36,6 +46,12 @@ SessionOptions paper_pipeline(SessionOptions o) {
 namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+// Adds the time until the end of its scope to `into`.
+struct TimeInto {
+  double& into;
+  Clock::time_point start = Clock::now();
+  ~TimeInto() { into += ms_since(start); }
+};
 
 size_t mask_area(const Image& m) {
   size_t n = 0;
@@ -170,20 +186,35 @@ Agreement agreement(const Image& mask, const Image& coverage) {
 // extents (largest axis) around their projected centres. A coverage render needs no others.
 // `members`: a superset of the Gaussians with values > 0 (the others are not visited).
 std::vector<uint8_t> selection_tiles(const GaussianScene& scene, const SegmentView& view, const std::vector<float>& values,
-                                     const std::vector<uint32_t>& members) {
+                                     const std::vector<uint32_t>& members, int threads) {
   const Camera& c = view.camera;
+  // The box of every member's extent: chunks in parallel, each its own box, then their
+  // union (minima and maxima do not depend on the order).
+  struct Box { double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30; };
+  constexpr size_t kChunk = 1 << 15;
+  std::vector<Box> boxes((members.size() + kChunk - 1) / kChunk);
+  parallel_chunks(members.size(), kChunk, members.size() >= 2 * kChunk ? threads : 1, [&](int, size_t a, size_t e) {
+    Box& b = boxes[a / kChunk];
+    for (size_t k = a; k < e; ++k) {
+      const uint32_t i = members[k];
+      if (values[i] <= 0) continue;
+      const Vec3 p = c.world_to_camera({scene.positions[3 * i], scene.positions[3 * i + 1], scene.positions[3 * i + 2]});
+      if (p.z <= 0.2) continue;  // the rasteriser's near plane culls it
+      const double s = std::exp(std::max({scene.scales[3 * i], scene.scales[3 * i + 1], scene.scales[3 * i + 2]}));
+      const double u = c.fx * p.x / p.z + c.cx, v = c.fy * p.y / p.z + c.cy;
+      const double r = 3 * s * std::max(c.fx, c.fy) / p.z + 2;
+      b.x0 = std::min(b.x0, u - r);
+      b.y0 = std::min(b.y0, v - r);
+      b.x1 = std::max(b.x1, u + r);
+      b.y1 = std::max(b.y1, v + r);
+    }
+  });
   double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30;
-  for (const uint32_t i : members) {
-    if (values[i] <= 0) continue;
-    const Vec3 p = c.world_to_camera({scene.positions[3 * i], scene.positions[3 * i + 1], scene.positions[3 * i + 2]});
-    if (p.z <= 0.2) continue;  // the rasteriser's near plane culls it
-    const double s = std::exp(std::max({scene.scales[3 * i], scene.scales[3 * i + 1], scene.scales[3 * i + 2]}));
-    const double u = c.fx * p.x / p.z + c.cx, v = c.fy * p.y / p.z + c.cy;
-    const double r = 3 * s * std::max(c.fx, c.fy) / p.z + 2;
-    x0 = std::min(x0, u - r);
-    y0 = std::min(y0, v - r);
-    x1 = std::max(x1, u + r);
-    y1 = std::max(y1, v + r);
+  for (const Box& b : boxes) {
+    x0 = std::min(x0, b.x0);
+    y0 = std::min(y0, b.y0);
+    x1 = std::max(x1, b.x1);
+    y1 = std::max(y1, b.y1);
   }
   const int gx = view.frame.grid_x, gy = view.frame.grid_y;
   std::vector<uint8_t> tiles(size_t(gx) * gy, 0);
@@ -201,7 +232,7 @@ Image selection_values_coverage(const GaussianScene& scene, const SegmentView& v
   rs.color = false;
   rs.depth = false;
   rs.threads = threads;
-  const std::vector<uint8_t> tiles = selection_tiles(scene, view, values, members);
+  const std::vector<uint8_t> tiles = selection_tiles(scene, view, values, members, threads);
   return rasterize(view.frame, rs, &values, nullptr, &tiles).value;
 }
 
@@ -430,7 +461,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // only (live_selection.h) and only after a vote changed it.
   LiveSelection& live = live_;
   bool undecided = false;
+  VotingParts& part = rep.voting;
   auto decide = [&]() {
+    TimeInto timed{part.decide};
     if (undecided) live.decide(acc);
     undecided = false;
   };
@@ -442,8 +475,12 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // `raw` (optional): the mask's votes already computed in the inspection pass.
   auto vote = [&](size_t k, ViewState& vs, const std::vector<bool>* selection, ViewVotes* raw, const Image& mask) {
     const SegmentView& view = views_[k];
-    if (raw) vs.positive = std::move(*raw);
-    else vs.positive = masked_votes(view.frame, mask, o.threads);
+    if (raw) {
+      vs.positive = std::move(*raw);
+    } else {
+      TimeInto timed{part.mask_votes};
+      vs.positive = masked_votes(view.frame, mask, o.threads);
+    }
     vs.neutral = ViewVotes{};
     const std::vector<uint32_t> shown = vs.positive.index;  // before the gates move some to neutral
     // The clicked pixels' rendered depths: where the target is in this view.
@@ -459,21 +496,26 @@ RoundReport Session::run_round(State& next, const State& prev) {
       }
     }
     if (o.depth_layers) {
-      GateReport g = gate_by_depth(scene_, view.camera, vs.positive, vs.neutral, seeds, selection, o.layer_options);
+      TimeInto timed{part.depth_layers};
+      GateReport g = gate_by_depth(scene_, view.camera, vs.positive, vs.neutral, seeds, selection, o.layer_options, o.threads);
       vs.depth_layers = g.layers;
       vs.gated_share = g.gated_share;
     }
     if (o.background_gate && !vs.positive.index.empty()) {
+      TimeInto timed{part.background};
       // Background pixels must not be nearer than the target: outside the mask, nearer
       // things are occluders (or the object itself), not the surface behind it.
       const double near = near_depth(scene_, view.camera, vs.positive, 0.05);
       const Image bg = background_inverse_depth(mask, view.depth, view.alpha,
-                                                near * (1 - o.background_options.occluder_margin), o.background_options);
-      vs.background_gaussians = gate_background(scene_, view.camera, bg, target, vs.positive, vs.neutral, o.background_options);
+                                                near * (1 - o.background_options.occluder_margin), o.background_options,
+                                                o.threads);
+      vs.background_gaussians = gate_background(scene_, view.camera, bg, target, vs.positive, vs.neutral, o.background_options,
+                                                o.threads);
     }
     vs.whole_pixels = 0;
     ViewVotes whole;
     if (o.whole_neutral && vs.sam) {
+      TimeInto timed{part.band};
       // Only Gaussians wholly outside the mask: one it partly shows (a neighbour's edge
       // blended into the mask's border) keeps the band's weight against it.
       const Image band = whole_band(*vs.sam, vs.candidate, vs.sam_negative ? &vs.sam_negative->mask : nullptr,
@@ -490,11 +532,12 @@ RoundReport Session::run_round(State& next, const State& prev) {
         }
       }
     }
+    TimeInto timed{part.accumulate};
     ViewVotes centred;
     if (o.centre_rule.enabled)
       centred = centred_votes(scene_, view.camera, mask, view.depth, vs.positive, view.all_votes,
-                              o.centre_rule.hidden_margin_pixels(view.camera));
-    acc.add(vs.positive, view.all_votes, +1, &vs.neutral, &centred, &whole);
+                              o.centre_rule.hidden_margin_pixels(view.camera), o.threads);
+    acc.add(vs.positive, view.all_votes, +1, &vs.neutral, &centred, &whole, o.threads);
     live.add_support(vs.positive.index);
     undecided = true;
     vs.status = ViewStatus::Accepted;
@@ -553,11 +596,13 @@ RoundReport Session::run_round(State& next, const State& prev) {
       if (inspect || (!first && several)) {
         const std::vector<float>& values = live.values();
         if (several) {  // the coverage decides the candidate, then the candidate's votes
+          TimeInto timed{part.coverage};
           coverage = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
           take_candidate(vs, r, inspect ? fallback_candidate(r, coverage) : choose(r, &coverage, o.min_coverage_pixels));
-        } else {  // one pass over the mask's tiles gives the selection's coverage and the mask's votes
+        } else {  // one pass over the mask's pixels gives the selection's coverage there and the mask's votes
           take_candidate(vs, r, r.mask_index);
           if (vs.mask_pixels > 0) {
+            TimeInto timed{part.mask_votes};
             mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
             raw = masked_votes(views_[k].frame, mask, o.threads, &values, &coverage);
             have_raw = true;
@@ -574,6 +619,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       }
       if (mask.empty()) mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
       if (inspect) {
+        TimeInto timed{part.agreement};
         Agreement a = agreement(mask, coverage);
         if (have_raw) {
           // The coverage is only rendered under the mask: the selection's whole extent in
@@ -645,7 +691,11 @@ RoundReport Session::run_round(State& next, const State& prev) {
     for (size_t k : order) {
       ViewState& vs = fresh[k];
       if (vs.status != ViewStatus::NoClicks && !(vs.from_selection && vs.status == ViewStatus::NoOverlap)) continue;
-      Image cov = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
+      Image cov;
+      {
+        TimeInto timed{part.coverage};
+        cov = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
+      }
       int covered = 0;
       for (float v : cov.data) covered += v > 0.5f;
       std::vector<models::Click> prompt;
@@ -694,6 +744,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   next.views = std::move(fresh);
   decide();
   if (o.coherence) {
+    TimeInto timed{part.decide};
     if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
     next.selection = eligible(coherent_selection(acc, scene_, *neighbours_, o.tau, o.min_total_weight,
                                                  o.coherence_options, o.centre_rule, &live.strong(), &live.support(),

@@ -122,8 +122,25 @@ struct ViewState {
   std::shared_ptr<const models::SegmentResult> sam_negative;  // the region of the negative clicks, cut from the mask
 };
 
+// Where a round's voting time went (milliseconds, summed over the views and over the
+// repeated passes of granularity consensus).
+struct VotingParts {
+  double mask_votes = 0;   // the masks' votes (with the selection's coverage when inspecting)
+  double agreement = 0;    // inspection's figures from the mask, the coverage and the view's votes
+  double band = 0;         // the part/whole band's votes
+  double depth_layers = 0; // gate_by_depth
+  double background = 0;   // the background estimate and gate
+  double accumulate = 0;   // centre evidence and adding the view to the sums
+  double coverage = 0;     // the selection rendered in views no click reached, or to choose a candidate
+  double decide = 0;       // deciding the live selection, and the coherence pass at the end
+};
+
+// "mask votes 310, band 220, ..." (milliseconds).
+std::string describe(const VotingParts& parts);
+
 struct RoundReport {
   double ms_propagation = 0, ms_sam = 0, ms_voting = 0;
+  VotingParts voting;
   int views_segmented = 0, accepted = 0, dropped = 0, prompted = 0;
   size_t selected = 0;
   bool larger_granularity = false;  // the first view voted with a larger candidate than SAM's choice

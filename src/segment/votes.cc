@@ -33,22 +33,35 @@ ViewVotes total_votes(const PreparedFrame& frame, int threads) {
 }
 
 ViewVotes masked_votes(const PreparedFrame& frame, const Image& mask, int threads, const std::vector<float>* values,
-                       Image* coverage, bool full_coverage) {
+                       Image* coverage) {
   if (mask.width != frame.camera.width || mask.height != frame.camera.height || mask.channels != 1)
     throw Error("masked_votes: mask does not match the view's resolution");
-  return weight_sums(frame, &mask, vote_settings(threads), values, coverage, full_coverage && values);
+  return weight_sums(frame, &mask, vote_settings(threads), values, coverage, ValueExtent::kMaskPixels);
 }
 
+namespace {
+// Lists shorter than this are summed on the calling thread (starting workers costs more).
+constexpr size_t kParallelFrom = 1 << 16;
+
+// into[index[k]] += sign * weight[k]. A view's list names each Gaussian once, so chunks of
+// it write disjoint sums, and integer sums do not depend on the order.
+void scatter_add(ZeroedArray<int64_t>& into, const ViewVotes& v, int64_t sign, int threads) {
+  const size_t n = v.index.size();
+  auto run = [&](int, size_t a, size_t e) {
+    for (size_t k = a; k < e; ++k) into[v.index[k]] += sign * v.weight[k];
+  };
+  if (n < kParallelFrom || threads == 1) run(0, 0, n);
+  else parallel_chunks(n, kParallelFrom, threads, run);
+}
+}  // namespace
+
 void VoteAccumulator::add(const ViewVotes& positive, const ViewVotes& total, int sign, const ViewVotes* neutral,
-                          const ViewVotes* centred, const ViewVotes* whole) {
-  for (size_t k = 0; k < positive.index.size(); ++k) positive_[positive.index[k]] += sign * positive.weight[k];
-  if (centred)
-    for (size_t k = 0; k < centred->index.size(); ++k) centred_[centred->index[k]] += sign * centred->weight[k];
-  for (size_t k = 0; k < total.index.size(); ++k) total_[total.index[k]] += sign * total.weight[k];
-  if (neutral)
-    for (size_t k = 0; k < neutral->index.size(); ++k) total_[neutral->index[k]] -= sign * neutral->weight[k];
-  if (whole)
-    for (size_t k = 0; k < whole->index.size(); ++k) whole_[whole->index[k]] += sign * whole->weight[k];
+                          const ViewVotes* centred, const ViewVotes* whole, int threads) {
+  scatter_add(positive_, positive, sign, threads);
+  if (centred) scatter_add(centred_, *centred, sign, threads);
+  scatter_add(total_, total, sign, threads);
+  if (neutral) scatter_add(total_, *neutral, -sign, threads);
+  if (whole) scatter_add(whole_, *whole, sign, threads);
 }
 
 std::vector<bool> VoteAccumulator::select(double tau, double min_total, const CentreRule& centre,
@@ -69,34 +82,49 @@ bool mask_near(const Image& mask, int x, int y, int margin) {
 }  // namespace
 
 ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const Image& mask, const Image& depth,
-                        const ViewVotes& positive, const ViewVotes& total, int margin) {
+                        const ViewVotes& positive, const ViewVotes& total, int margin, int threads) {
   // No depth image (a view built without one): centres are not tested for being hidden.
   const bool have_depth = !depth.data.empty();
   if (have_depth && (depth.width != mask.width || depth.height != mask.height))
     throw Error("centred_votes: depth and mask sizes differ");
-  ViewVotes out;
-  size_t t = 0;
-  for (size_t k = 0; k < positive.index.size(); ++k) {
-    const uint32_t g = positive.index[k];
-    while (t < total.index.size() && total.index[t] < g) ++t;
-    if (t == total.index.size() || total.index[t] != g) continue;
-    double u = 0, v = 0, z = 0;
-    const bool projects = camera.project(scene.position(g), u, v, &z);  // false: behind the camera
-    const int x = projects ? int(std::floor(u)) : -1, y = projects ? int(std::floor(v)) : -1;
-    const bool in_frame = x >= 0 && y >= 0 && x < mask.width && y < mask.height;
-    const double surface = in_frame && have_depth ? double(depth.at(x, y)) : 0.0;
-    const bool hidden = surface > 0 && z > surface * 1.05 + 2.0 * depth_extent(scene, camera, g);
-    bool counts;
-    if (in_frame && mask.at(x, y) > 0.5f) {
-      counts = !hidden;
-    } else if (!in_frame || (hidden && !mask_near(mask, x, y, margin))) {
-      counts = 2 * positive.weight[k] > total.weight[t];
-    } else {
-      counts = false;  // a visible centre outside the mask, or one hidden at the mask's edge
+  // Chunks of `positive` in parallel, each into its own list; concatenated in order, the
+  // lists are what one pass would give.
+  const size_t n = positive.index.size();
+  const size_t grain = std::max(kParallelFrom, (n + 3) / 4);
+  std::vector<ViewVotes> parts((n + grain - 1) / grain);
+  auto run = [&](int, size_t begin, size_t end) {
+    ViewVotes& out = parts[begin / grain];
+    size_t t = size_t(std::lower_bound(total.index.begin(), total.index.end(), positive.index[begin]) - total.index.begin());
+    for (size_t k = begin; k < end; ++k) {
+      const uint32_t g = positive.index[k];
+      while (t < total.index.size() && total.index[t] < g) ++t;
+      if (t == total.index.size() || total.index[t] != g) continue;
+      double u = 0, v = 0, z = 0;
+      const bool projects = camera.project(scene.position(g), u, v, &z);  // false: behind the camera
+      const int x = projects ? int(std::floor(u)) : -1, y = projects ? int(std::floor(v)) : -1;
+      const bool in_frame = x >= 0 && y >= 0 && x < mask.width && y < mask.height;
+      const double surface = in_frame && have_depth ? double(depth.at(x, y)) : 0.0;
+      const bool hidden = surface > 0 && z > surface * 1.05 + 2.0 * depth_extent(scene, camera, g);
+      bool counts;
+      if (in_frame && mask.at(x, y) > 0.5f) {
+        counts = !hidden;
+      } else if (!in_frame || (hidden && !mask_near(mask, x, y, margin))) {
+        counts = 2 * positive.weight[k] > total.weight[t];
+      } else {
+        counts = false;  // a visible centre outside the mask, or one hidden at the mask's edge
+      }
+      if (!counts) continue;
+      out.index.push_back(g);
+      out.weight.push_back(total.weight[t]);
     }
-    if (!counts) continue;
-    out.index.push_back(g);
-    out.weight.push_back(total.weight[t]);
+  };
+  if (parts.size() > 1 && threads != 1) parallel_chunks(n, grain, threads, run);
+  else if (n) run(0, 0, n);
+  if (parts.size() == 1) return std::move(parts[0]);
+  ViewVotes out;
+  for (const ViewVotes& part : parts) {
+    out.index.insert(out.index.end(), part.index.begin(), part.index.end());
+    out.weight.insert(out.weight.end(), part.weight.begin(), part.weight.end());
   }
   return out;
 }

@@ -28,13 +28,10 @@ ViewVotes total_votes(const PreparedFrame& frame, int threads = 0);
 // Votes from the pixels where mask > 0.5 (mask at the frame's resolution); only the tiles
 // the mask touches are rasterised (of a compacted frame: only those it covers partly).
 // With `values` (one per Gaussian, e.g. the current selection as 0/1) the same pass also
-// renders their coverage into `coverage` (1 channel, the frame's size; 0 outside the
-// tiles the mask touches): inspection and voting share one rasterisation.
-// With `full_coverage` every tile is rasterised, so the coverage is complete (inspection
-// needs the selection outside the mask too) for the cost of one pass.
+// renders their coverage into `coverage` (1 channel, the frame's size) at the mask's pixels
+// (0 elsewhere): inspection and voting share one rasterisation.
 ViewVotes masked_votes(const PreparedFrame& frame, const Image& mask, int threads = 0,
-                       const std::vector<float>* values = nullptr, Image* coverage = nullptr,
-                       bool full_coverage = false);
+                       const std::vector<float>* values = nullptr, Image* coverage = nullptr);
 
 // Centre evidence, for Gaussians on an object's outline. A coarse Gaussian of a thin object
 // (a pillar a few Gaussians wide) spills over the mask's edge in every view, so its share
@@ -77,8 +74,9 @@ class VoteAccumulator {
   // view's total that count neither way (depth-gated content of the mask). `centred`
   // (optional): the view totals of the Gaussians whose centre lies inside the mask. `whole`
   // (optional): weights of the view's total left open between part and whole (WholeRule).
+  // `threads`: workers for long lists (0: every core); the sums do not depend on it.
   void add(const ViewVotes& positive, const ViewVotes& total, int sign = 1, const ViewVotes* neutral = nullptr,
-           const ViewVotes* centred = nullptr, const ViewVotes* whole = nullptr);
+           const ViewVotes* centred = nullptr, const ViewVotes* whole = nullptr, int threads = 1);
   // Gaussians whose positive share P/A exceeds tau (or, with the centre rule, tau_low when
   // their centre evidence C/A exceeds min_centred) and whose total weight A is at least
   // min_total (in pixel-weight units); with the whole rule, also those it selects.
@@ -122,7 +120,7 @@ class VoteAccumulator {
 // lower parts are the pillar's top. A centre hidden by the object itself (a wall behind a
 // trellis, the floor in a ring) stays unchecked and does not count.
 ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const Image& mask, const Image& depth,
-                        const ViewVotes& positive, const ViewVotes& total, int margin = 12);
+                        const ViewVotes& positive, const ViewVotes& total, int margin = 12, int threads = 1);
 
 // Bounding tiles of mask > 0.5 pixels, as a tile mask for rasterize().
 std::vector<uint8_t> tiles_under_mask(const Image& mask, int grid_x, int grid_y);
