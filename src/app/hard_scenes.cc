@@ -625,6 +625,158 @@ EvalScene kitchen(const EvalSetOptions& opt) {
   return s;
 }
 
+// A tube along a segment: `n` flat Gaussians on its surface, the radius going from r0 to r1.
+void tube(SceneBuilder& b, const Vec3& p0, const Vec3& p1, double r0, double r1, int n, double size, const Vec3& rgb,
+          int label) {
+  const Vec3 axis = normalized(p1 - p0);
+  const Vec3 side = normalized(cross(axis, std::abs(axis.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0}));
+  const Vec3 up = cross(side, axis);
+  for (int i = 0; i < n; ++i) {
+    const double t = b.rng.uniform(), a = b.rng.range(0, 2 * M_PI), r = r0 + (r1 - r0) * t;
+    const Vec3 radial = side * std::cos(a) + up * std::sin(a);
+    b.splat(p0 + (p1 - p0) * t + radial * r, radial, size, rgb, label, 0.03);
+  }
+}
+
+// Forward-facing capture of a museum hall, as the NVOS scenes are taken (a 5 x 4 grid of
+// nearly parallel cameras), built after everything else was tuned, as a check on objects
+// nothing was tuned on: a skeleton of thin bones whose ribs show the far ribs and the wall
+// through their gaps (NVOS's trex), a spike of orchids on a thin stem beside a second one,
+// in front of a large-leaved plant (orchids), and a skull mounted on the wall with long horns reaching towards the cameras
+// (horns).
+EvalScene museum(const EvalSetOptions& opt) {
+  EvalScene s;
+  s.name = "museum";
+  DemoScene& demo = s.scene;
+  GaussianScene& g = demo.bundle.gaussians;
+  g.sh_degree = 3;
+  SplitMix64 rng(73);
+  SceneBuilder b{g, demo.labels, rng, 3};
+  const double d = opt.density, sz = 1 / std::sqrt(d);
+  const double wall_y = 1.6;
+  for (int i = 0, n = int(11000 * d); i < n; ++i) {  // plastered wall with a dado rail
+    const Vec3 p{rng.range(-2.8, 2.8), wall_y, rng.range(0, 2.8)};
+    const double z = p.z;
+    const Vec3 c = z < 0.9 ? Vec3{0.42, 0.46, 0.50} : (z < 0.94 ? Vec3{0.85, 0.84, 0.80} : Vec3{0.80, 0.74, 0.62});
+    b.splat(p, {0, -1, 0}, 0.05 * sz, c + Vec3{1, 1, 1} * (0.04 * cell_noise(int((p.x + 10) * 6), int(z * 6))), -1, 0.02);
+  }
+  for (int i = 0, n = int(8000 * d); i < n; ++i) {  // parquet floor
+    const Vec3 p{rng.range(-2.8, 2.8), rng.range(-1.4, wall_y), 0};
+    const int plank = int(std::floor((p.x + 10) / 0.12));
+    b.splat(p, {0, 0, 1}, 0.05 * sz, Vec3{0.52, 0.36, 0.22} + Vec3{1, 0.8, 0.6} * (0.1 * cell_noise(plank, int(p.y * 2))), -1,
+            0.04);
+  }
+  // The skeleton, 1 m before the wall: a spine along x, ribs around it, neck and skull, a
+  // tail, four thin legs; ivory bones.
+  const Vec3 bone{0.86, 0.82, 0.70};
+  const double body_y = 0.6, spine_z = 1.15;
+  const int skeleton = add_object(demo, "skeleton", {-0.55, body_y, 0.8}, 1.1f);
+  tube(b, {-1.25, body_y, spine_z}, {0.05, body_y, spine_z + 0.05}, 0.035, 0.035, int(900 * d), 0.012 * sz, bone, skeleton);
+  for (double x = -1.1; x <= -0.05; x += 0.09) {  // ribs: rings around the spine, open at the top
+    const double r = 0.2 + 0.08 * std::sin((x + 1.1) / 1.05 * M_PI);
+    for (int i = 0, n = int(160 * d) + 40; i < n; ++i) {
+      const double a = rng.range(0.35, 2 * M_PI - 0.35);  // from the top around
+      const Vec3 radial{0, std::sin(a), std::cos(a)};
+      b.strip(Vec3{x, body_y, spine_z - r} + radial * r, radial, {0, std::cos(a), -std::sin(a)}, 0.03, 0.008, bone, skeleton,
+              0.03);
+    }
+  }
+  tube(b, {0.05, body_y, spine_z + 0.05}, {0.3, body_y, spine_z + 0.3}, 0.03, 0.025, int(250 * d), 0.012 * sz, bone, skeleton);
+  for (int i = 0, n = int(700 * d); i < n; ++i) {  // skull: an elongated box
+    const Vec3 u{rng.range(-1, 1), rng.range(-1, 1), rng.range(-1, 1)};
+    const int face = int(rng.uniform() * 3);
+    Vec3 p = u, nrm{0, 0, 0};
+    if (face == 0) p.x = u.x < 0 ? -1 : 1, nrm = {p.x, 0, 0};
+    else if (face == 1) p.y = u.y < 0 ? -1 : 1, nrm = {0, p.y, 0};
+    else p.z = u.z < 0 ? -1 : 1, nrm = {0, 0, p.z};
+    b.splat(Vec3{0.45, body_y, spine_z + 0.33} + Vec3{p.x * 0.16, p.y * 0.07, p.z * 0.07}, nrm, 0.014 * sz, bone, skeleton, 0.03);
+  }
+  tube(b, {-1.25, body_y, spine_z}, {-1.9, body_y, 0.55}, 0.03, 0.01, int(300 * d), 0.01 * sz, bone, skeleton);
+  for (double lx : {-0.95, -0.1})
+    for (double ly : {-0.12, 0.12})
+      tube(b, {lx, body_y + ly, spine_z - 0.05}, {lx + 0.05, body_y + ly, 0.0}, 0.025, 0.018, int(260 * d), 0.01 * sz, bone,
+           skeleton);
+  // A low dark plinth under it (not part of it).
+  for (int i = 0, n = int(1500 * d); i < n; ++i)
+    b.splat({rng.range(-1.6, 0.4), rng.range(body_y - 0.35, body_y + 0.35), 0.02}, {0, 0, 1}, 0.04 * sz, {0.2, 0.2, 0.22}, -1,
+            0.02);
+  // A large-leaved plant against the wall, and orchids on thin arching stems before it.
+  const Vec3 plant_c{0.95, 1.25, 0};
+  cylinder(b, plant_c, 0.2, 0.24, 0.45, int(900 * d), 0.02 * sz, {0.55, 0.30, 0.20}, -1, true);
+  for (int leaf = 0; leaf < 26; ++leaf) {
+    const double a = rng.range(0, 2 * M_PI), tilt = rng.range(0.3, 1.1);
+    const Vec3 dir{std::cos(a) * std::sin(tilt), std::sin(a) * std::sin(tilt) * 0.5, std::cos(tilt)};
+    const Vec3 base = plant_c + Vec3{0, 0, 0.45};
+    const Vec3 nrm = normalized(cross(dir, Vec3{-std::sin(a), std::cos(a), 0}));
+    const Vec3 col{rng.range(0.08, 0.16), rng.range(0.30, 0.42), rng.range(0.10, 0.16)};
+    for (double t = 0.15; t < 0.75; t += 0.012)
+      b.strip(base + dir * t, nrm, dir, 0.03, 0.06 * std::sin((t - 0.1) / 0.65 * M_PI) + 0.02, col, -1, 0.06);
+  }
+  const Vec3 orchid_c{0.7, 0.55, 0.0};
+  box(b, orchid_c + Vec3{0, 0, 0.35}, 0.16, 0.35, int(1400 * d), 0.02 * sz, {0.9, 0.9, 0.88}, {0.9, 0.9, 0.88}, -1);  // stand
+  cylinder(b, orchid_c + Vec3{0, 0, 0.7}, 0.07, 0.09, 0.13, int(500 * d), 0.012 * sz, {0.25, 0.35, 0.55}, -1, true);  // pot
+  const int orchid = add_object(demo, "orchid", orchid_c + Vec3{0.15, -0.1, 1.2}, 0.3f);
+  Vec3 p_orchid_anchor;  // on the right spike's second flower
+  for (int stem = 0; stem < 2; ++stem) {  // two spikes leaning apart: the right one is the target
+    const int label = stem == 1 ? orchid : -1;
+    const Vec3 lean{stem ? 0.14 : -0.14, -0.08, 0};
+    const Vec3 root = orchid_c + Vec3{stem ? 0.015 : -0.015, 0, 0.83};
+    Vec3 p = root;
+    for (double t = 0; t < 1; t += 0.02) {  // the stem, 5 mm thick, arching over
+      const Vec3 q = root + lean * (t * t * 2.2) + Vec3{0, 0, 0.55 * t};
+      b.strip(q, {0, -1, 0}, normalized(q - p + Vec3{0, 0, 1e-6}), 0.02, 0.005, {0.30, 0.45, 0.18}, label, 0.02);
+      p = q;
+    }
+    for (int flower = 0; flower < 4; ++flower) {  // flowers along the stem's end
+      const Vec3 fc = p - lean * (0.25 * flower) - Vec3{0, 0, 0.07 * flower} + Vec3{0, -0.03, 0};
+      if (stem == 1 && flower == 1) p_orchid_anchor = fc + Vec3{0, -0.01, 0};
+      for (int petal = 0; petal < 5; ++petal) {
+        const double pa = petal * 2 * M_PI / 5 + flower;
+        const Vec3 dir{std::cos(pa), 0.15, std::sin(pa)};
+        for (double t = 0.005; t < 0.04; t += 0.007)
+          b.strip(fc + normalized(dir) * t, {0, -1, 0.1}, normalized(dir), 0.012, 0.016 * std::sin(t / 0.045 * M_PI) + 0.004,
+                  petal % 2 ? Vec3{0.86, 0.55, 0.78} : Vec3{0.93, 0.70, 0.86}, label, 0.05);
+      }
+      b.splat(fc + Vec3{0, -0.005, 0}, {0, -1, 0}, 0.008, {0.95, 0.85, 0.3}, label, 0.03);
+    }
+  }
+  // A skull mounted on the wall, high up, with long horns reaching towards the cameras.
+  const Vec3 skull_c{-0.35, wall_y - 0.06, 2.05};
+  SplitMix64 horn_rng(5);  // its own stream: the objects before it do not move it
+  SceneBuilder hb{g, demo.labels, horn_rng, 3};
+  const int horns = add_object(demo, "horns", skull_c + Vec3{0, -0.2, 0.05}, 0.6f);
+  for (int i = 0, n = int(900 * d); i < n; ++i) {  // the skull: a half ellipsoid off the wall
+    Vec3 u;
+    do u = {horn_rng.range(-1, 1), horn_rng.range(-1, 0), horn_rng.range(-1, 1)};
+    while (dot(u, u) > 1);
+    const Vec3 nrm = normalized(u);
+    hb.splat(skull_c + Vec3{nrm.x * 0.11, nrm.y * 0.07, nrm.z * 0.17}, nrm, 0.012 * sz, {0.80, 0.76, 0.66}, horns, 0.03);
+  }
+  for (double side : {-1.0, 1.0}) {  // each horn: segments curving out, forward and up
+    Vec3 p = skull_c + Vec3{side * 0.09, -0.03, 0.1};
+    for (int k = 0; k < 8; ++k) {
+      const double t = (k + 1) / 8.0;
+      const Vec3 q = skull_c + Vec3{side * (0.09 + 0.35 * t), -0.03 - 0.3 * t * t, 0.1 + 0.25 * t - 0.12 * t * t * t};
+      tube(hb, p, q, 0.035 * (1 - 0.8 * (t - 0.125)), 0.035 * (1 - 0.8 * t), int(120 * d) + 20, 0.009 * sz,
+           {0.30, 0.26, 0.20}, horns);
+      p = q;
+    }
+  }
+  // The capture: a 5 x 4 grid of cameras 3 m from the wall, all looking nearly straight ahead.
+  int id = 0;
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 5; ++col) {
+      const Vec3 eye{-0.2 + (col - 2) * 0.25, -1.4, 1.25 + (row - 1.5) * 0.18};
+      const Vec3 target{-0.2 + (col - 2) * 0.08, wall_y, 1.2 + (row - 1.5) * 0.05};
+      demo.bundle.cameras.push_back(named(Camera::look_at(eye, target, {0, 0, 1}, opt.width, opt.height, 66.0), id++, "grid"));
+    }
+  add_task(s, "skeleton", "thin bones with gaps in front of a wall (NVOS trex)", skeleton, {-0.6, body_y - 0.2, spine_z - 0.15},
+           7);
+  add_task(s, "orchid", "a flower spike on a thin stem beside another, before foliage", orchid, p_orchid_anchor, 12, 20);
+  add_task(s, "horns", "mounted skull with long horns reaching out (NVOS horns)", horns, skull_c + Vec3{0, -0.07, 0}, 2);
+  return s;
+}
+
 EvalScene orbit_demo(const EvalSetOptions& opt) {
   EvalScene s;
   s.name = "orbit";
@@ -691,6 +843,7 @@ std::vector<EvalScene> make_eval_scenes(const EvalSetOptions& opt) {
   out.push_back(patio(opt));
   out.push_back(study(opt));
   out.push_back(kitchen(opt));
+  out.push_back(museum(opt));
   return out;
 }
 

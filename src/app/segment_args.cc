@@ -33,6 +33,9 @@ const char* const kSegmentOptionsHelp =
     "                                the agreeing candidate closest to it (off: it measured worse)\n"
     "  --no-granularity-consensus    keep the clicked view's mask even when most views segment a larger\n"
     "                                whole around it\n"
+
+    "  --no-object-prior             keep SAM's choice in the clicked view even when it runs past three\n"
+    "                                image borders and a candidate inside the frame holds the click\n"
     "  --no-whole-neutral            let a view whose mask is a part of a larger candidate vote against\n"
     "                                the rest of that candidate (the vote keeps the intersection)\n"
     "  --selection-prompts N         rounds prompting views no click reached (default 2, 0 = off)\n"
@@ -54,7 +57,7 @@ const std::set<std::string>& segment_value_flags() {
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "no-background-plane",
-                                          "candidate-choice", "no-granularity-consensus", "no-whole-neutral", "hidden-fallback", "no-depth-agreement",
+                                          "candidate-choice", "no-granularity-consensus", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement",
                                           "sam-negatives"};
   return f;
 }
@@ -88,6 +91,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.choose_candidate = args.has("candidate-choice");
   s.session.granularity_consensus = !args.has("no-granularity-consensus");
   s.session.whole_neutral = !args.has("no-whole-neutral");
+  s.session.object_prior = !args.has("no-object-prior");
   s.session.propagation.hidden_fallback = args.has("hidden-fallback");
   if (args.has("no-depth-agreement")) s.session.propagation.depth_agreement = 0;
   s.session.negative_regions = !args.has("sam-negatives");

@@ -35,7 +35,7 @@ std::string describe(const VotingParts& p) {
 
 SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
-  o.granularity_consensus = o.whole_neutral = false;
+  o.granularity_consensus = o.whole_neutral = o.object_prior = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
   o.propagation.hidden_fallback = true;
@@ -57,6 +57,49 @@ size_t mask_area(const Image& m) {
   size_t n = 0;
   for (float v : m.data) n += v > 0.5f;
   return n;
+}
+
+// Image borders (0-4) a mask reaches.
+int borders_reached(const Image& m) {
+  const int w = m.width, h = m.height;
+  if (w == 0 || h == 0) return 0;
+  bool top = false, bottom = false, left = false, right = false;
+  for (int x = 0; x < w; ++x) {
+    top |= m.at(x, 0) > 0.5f;
+    bottom |= m.at(x, h - 1) > 0.5f;
+  }
+  for (int y = 0; y < h; ++y) {
+    left |= m.at(0, y) > 0.5f;
+    right |= m.at(w - 1, y) > 0.5f;
+  }
+  return int(top) + int(bottom) + int(left) + int(right);
+}
+
+// The clicked view's candidate. SAM's own choice, unless it runs past the frame on three or
+// four sides (the wall or floor around the click: a pale skull on a pale wall) while another
+// candidate holding every positive click stays off all borders but one (an object the click
+// picks out); then the largest such candidate. A click that means the surroundings still
+// gets them from a second view or click; one that means the object gets it at once.
+int object_candidate(const models::SegmentResult& r, const std::vector<Click>& clicks, double min_score) {
+  if (r.candidates.size() < 2 || borders_reached(r.candidates[size_t(r.mask_index)]) < 3) return r.mask_index;
+  int best = r.mask_index;
+  size_t best_area = 0;
+  for (size_t c = 0; c < r.candidates.size(); ++c) {
+    const Image& m = r.candidates[c];
+    if (int(c) == r.mask_index || r.candidate_scores[c] < min_score || borders_reached(m) > 1) continue;
+    bool holds = true;
+    for (const Click& k : clicks)
+      if (k.label == 1) {
+        const int x = std::clamp(int(k.x), 0, m.width - 1), y = std::clamp(int(k.y), 0, m.height - 1);
+        holds &= m.at(x, y) > 0.5f;
+      }
+    const size_t area = mask_area(m);
+    if (holds && area > best_area) {
+      best = int(c);
+      best_area = area;
+    }
+  }
+  return best;
 }
 
 Image mask_image(const std::vector<uint8_t>& m, int w, int h) {
@@ -609,7 +652,11 @@ RoundReport Session::run_round(State& next, const State& prev) {
           }
         }
       } else {
-        take_candidate(vs, r, first && forced_first >= 0 ? forced_first : r.mask_index);
+        take_candidate(vs, r,
+                       !first              ? r.mask_index
+                       : forced_first >= 0 ? forced_first
+                       : o.object_prior    ? object_candidate(r, vs.clicks, o.min_object_score)
+                                           : r.mask_index);
       }
       if (first) first_view = k;
       if (vs.mask_pixels == 0) {
@@ -666,7 +713,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
       int best = -1, best_accepted = rep.accepted, last = -1;
       for (size_t c = 0; c < r.candidates.size(); ++c) {
         if (int(c) == used || r.candidate_scores[c] < o.min_granularity_score ||
-            double(mask_area(r.candidates[c])) < o.granularity_growth * double(used_area))
+            double(mask_area(r.candidates[c])) < o.granularity_growth * double(used_area) ||
+            (o.object_prior && borders_reached(r.candidates[c]) >= 3))
           continue;
         inspect_and_vote(int(c));
         last = int(c);
