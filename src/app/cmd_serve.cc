@@ -16,7 +16,7 @@ namespace {
 int run_serve(const std::vector<std::string>& argv) {
   std::set<std::string> values = segment_value_flags(), switches = segment_switch_flags();
   values.insert({"cameras", "images", "port", "host", "out-dir", "data-dir", "preview", "background", "max-seconds",
-                 "max-upload-mb"});
+                 "max-upload-mb", "kept-memory-mb"});
   switches.insert("no-segmentation");
   values.insert(scene_value_flags().begin(), scene_value_flags().end());
   switches.insert(scene_switch_flags().begin(), scene_switch_flags().end());
@@ -46,6 +46,9 @@ int run_serve(const std::vector<std::string>& argv) {
   const double upload_mb = args.get_double("max-upload-mb", 256);
   if (!(upload_mb >= 0 && upload_mb <= 16384)) throw Error("--max-upload-mb must be in [0, 16384]");
   o.app.max_upload_bytes = uint64_t(upload_mb * 1024 * 1024);
+  const double kept_mb = args.get_double("kept-memory-mb", 2048);
+  if (!(kept_mb >= 0 && kept_mb <= 1 << 20)) throw Error("--kept-memory-mb must be in [0, 1048576]");
+  o.app.kept_segmentation_bytes = uint64_t(kept_mb * 1024 * 1024);
   o.app.preview_side = args.get_int("preview", 640);
   if (o.app.preview_side < 64 || o.app.preview_side > 4096) throw Error("--preview must be in [64, 4096]");
   if (args.has("background")) {
@@ -64,13 +67,15 @@ std::string usage() {
   return std::string(
              "usage: isegman serve <scene> [--port 8080] [--host 127.0.0.1] [--out-dir isegman-out]\n"
              "                     [--data-dir DIR] [--max-upload-mb 256] [--preview 640] [--background COLOUR]\n"
-             "                     [--no-segmentation] [--max-seconds S]\n"
+             "                     [--no-segmentation] [--max-seconds S] [--kept-memory-mb 2048]\n"
              "                     [--cameras FILE] [--images DIR] [segmentation options]\n"
              "  Opens the scene in the interactive web app: click objects to select them in 3D, see the\n"
              "  per-view evidence, edit (remove, colorize, scale, copy, combine) and export PLY/.splat.\n"
              "  Exports written on the server go below --out-dir only; scenes the page names (combine) are\n"
              "  read from below --data-dir only (default: the scene's parent folder) or uploaded from the page\n"
              "  (at most --max-upload-mb, kept in a temporary folder). --port 0 picks a free port.\n"
+             "  After an edit the segmentation of the scene before it is kept (its views, for undo) while\n"
+             "  the kept ones together hold at most --kept-memory-mb; the oldest go first.\n"
              "  Defaults differ from `segment`: --views 25%, --max-side 512.\n") +
          kSegmentOptionsHelp;
 }

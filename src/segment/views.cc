@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "io/image_io.h"
 #include "models/tensor_memory.h"
+#include "render/visibility.h"
 #include "segment/view_selection.h"
 
 namespace isegman::segment {
@@ -89,6 +90,13 @@ SegmentView build_view(const GaussianScene& scene, const Camera& camera, int cam
   // What SAM encoded, a quarter of the float image: at 1000x660, 6 MB less per view.
   v.rgb8 = models::quantise_rgb(rgb);
   return v;
+}
+
+size_t view_bytes(const SegmentView& v) {
+  return sizeof(SegmentView) + frame_bytes(v.frame) + v.rgb8.capacity() +
+         (v.depth.data.capacity() + v.alpha.data.capacity()) * sizeof(float) +
+         v.all_votes.index.capacity() * sizeof(uint32_t) + v.all_votes.weight.capacity() * sizeof(int64_t) +
+         (v.embedding.features.bytes ? v.embedding.features.bytes->capacity() : 0);
 }
 
 Image SegmentView::rgb_image() const {

@@ -30,6 +30,10 @@ struct SegmentView {
   models::SamEmbedding embedding;
 };
 
+// Bytes a view holds (its frame, images, all-pixel votes and embedding): what a cache of
+// views is bounded by.
+size_t view_bytes(const SegmentView& view);
+
 struct ViewOptions {
   bool use_photos = false;   // SAM sees the source photos instead of renders
   int max_side = 1024;       // working resolution cap (SAM works at 1024 anyway)

@@ -27,6 +27,7 @@ SegmentationOptions segmentation_options(const AppOptions& o) {
   s.views = o.views;
   s.settings = o.settings;
   s.threads = o.threads;
+  s.kept_bytes = o.kept_segmentation_bytes;
   return s;
 }
 

@@ -42,6 +42,8 @@ struct AppOptions {
   float background[3] = {0.f, 0.f, 0.f};
   int threads = 0;
   uint64_t max_upload_bytes = uint64_t(256) << 20;  // scenes uploaded to combine
+  // Views and scene copies of earlier scenes' segmentations kept for undo (segmentation.h).
+  uint64_t kept_segmentation_bytes = uint64_t(2) << 30;
   AppOptions() { views.max_side = 512; }
 };
 

@@ -27,6 +27,15 @@ bool same_camera(const Camera& a, const Camera& b) {
   return true;
 }
 
+// Bytes of a scene copy's parameter arrays.
+size_t scene_bytes(const GaussianScene& g) {
+  size_t n = (g.positions.capacity() + g.normals.capacity() + g.sh.capacity() + g.opacity.capacity() +
+              g.scales.capacity() + g.rotations.capacity()) *
+             sizeof(float);
+  for (const ExtraProperty& e : g.extras) n += e.data.capacity();
+  return n;
+}
+
 }  // namespace
 
 Segmentation::Segmentation(std::shared_ptr<const models::SamModel> sam, segment::SessionOptions session_options,
@@ -48,9 +57,32 @@ void Segmentation::keep_current() {
   kept_.push_back({std::move(snapshot_), fingerprint_, std::move(session_), std::move(log_), std::move(redo_),
                    std::move(free_views_)});
   if (kept_.size() > kKept) kept_.erase(kept_.begin());
+  trim_kept();
   log_.clear();
   redo_.clear();
   free_views_.clear();
+}
+
+size_t Segmentation::bytes_of(const Kept& k) {
+  size_t n = k.snapshot ? scene_bytes(k.snapshot->gaussians) : 0;
+  if (k.session)
+    for (const segment::SegmentView& v : k.session->views()) n += segment::view_bytes(v);
+  return n;
+}
+
+size_t Segmentation::kept_bytes() const {
+  size_t n = 0;
+  for (const Kept& k : kept_) n += bytes_of(k);
+  return n;
+}
+
+void Segmentation::trim_kept() {
+  while (!kept_.empty() && kept_bytes() > kept_budget_) kept_.erase(kept_.begin());
+}
+
+void Segmentation::set_kept_budget(size_t bytes) {
+  kept_budget_ = bytes;
+  trim_kept();
 }
 
 std::vector<uint64_t> Segmentation::kept() const {

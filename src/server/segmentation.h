@@ -77,8 +77,13 @@ class Segmentation {
   // Of the last views built: how many were reused from the previous scene / rebuilt.
   int last_reused() const { return last_reused_; }
   int last_rebuilt() const { return last_rebuilt_; }
-  // Fingerprints of the kept segmentations of earlier scenes.
+  // Fingerprints of the kept segmentations of earlier scenes (oldest first).
   std::vector<uint64_t> kept() const;
+  // The kept segmentations together hold at most this many bytes of views and scene
+  // copies: the oldest go first (a large scene's views are ~0.1-0.2 GB each, and every kept
+  // segmentation holds a full set). The current one is never dropped.
+  void set_kept_budget(size_t bytes);
+  size_t kept_bytes() const;
   // Makes the kept segmentation of `fingerprint` current (the current one is kept);
   // false when there is none.
   bool restore(uint64_t fingerprint);
@@ -133,6 +138,9 @@ class Segmentation {
     std::vector<AddedView> free_views;
   };
   static constexpr size_t kKept = 3;  // each holds its views' renders and embeddings
+  size_t kept_budget_ = size_t(2) << 30;
+  static size_t bytes_of(const Kept& k);
+  void trim_kept();
   void keep_current();
 
   std::vector<Kept> kept_;  // newest last

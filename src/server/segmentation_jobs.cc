@@ -68,6 +68,7 @@ void SegmentationJobs::prepare_job(const JobRunner::Report& report) {
     }
     sam_ = std::make_shared<const models::SamModel>(enc.string(), dec.string(), options_.threads);
     seg_ = std::make_unique<Segmentation>(sam_, options_.session, options_.views, options_.settings);
+    seg_->set_kept_budget(size_t(options_.kept_bytes));
     std::shared_ptr<const SceneBundle> snap = snapshot();
     set_state("preparing", "rendering views and computing SAM embeddings");
     seg_->open(snap, snap->gaussians.fingerprint(), [&](int done, int total, const std::string& line) {

@@ -37,6 +37,7 @@ struct SegmentationOptions {
   segment::ViewOptions views;
   SegmentSettings settings;
   int threads = 0;
+  uint64_t kept_bytes = uint64_t(2) << 30;  // Segmentation::set_kept_budget
 };
 
 // New settings; unset fields keep their current value.

