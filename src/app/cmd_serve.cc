@@ -41,7 +41,7 @@ int run_serve(const std::vector<std::string>& argv) {
   o.app.settings.tau = setup.session.tau;
   o.app.settings.mode = setup.session.propagation.mode;
   o.app.settings.inspection = setup.session.inspection;
-  o.app.settings.views_spec = args.has("views") ? setup.views_spec : "25%";
+  o.app.settings.views_spec = args.has("views") ? setup.views_spec : "auto";
   o.app.threads = setup.session.threads;
   const double upload_mb = args.get_double("max-upload-mb", 256);
   if (!(upload_mb >= 0 && upload_mb <= 16384)) throw Error("--max-upload-mb must be in [0, 16384]");
@@ -76,7 +76,10 @@ std::string usage() {
              "  (at most --max-upload-mb, kept in a temporary folder). --port 0 picks a free port.\n"
              "  After an edit the segmentation of the scene before it is kept (its views, for undo) while\n"
              "  the kept ones together hold at most --kept-memory-mb; the oldest go first.\n"
-             "  Defaults differ from `segment`: --views 25%, --max-side 512.\n") +
+             "  --views auto (the default): 20 views, spread over the cameras until the first click of a\n"
+             "  segmentation, then the 20 that best see the clicked point (built on demand; views no longer\n"
+             "  used stay as spares within --kept-memory-mb), so a click's cost does not grow with the\n"
+             "  number of cameras. Defaults differ from `segment`: --max-side 512.\n") +
          kSegmentOptionsHelp;
 }
 

