@@ -777,6 +777,116 @@ EvalScene museum(const EvalSetOptions& opt) {
   return s;
 }
 
+// A living room on a half orbit, built after the museum as a further check on objects
+// nothing was tuned on: a bicycle leaning on the wall (a thin frame, two wheels of spokes
+// that show the wall through them), a rug lying flat on the floor, a dark television on a
+// low cabinet, and a vase of flowers on a coffee table.
+EvalScene lounge(const EvalSetOptions& opt) {
+  EvalScene s;
+  s.name = "lounge";
+  DemoScene& demo = s.scene;
+  GaussianScene& g = demo.bundle.gaussians;
+  g.sh_degree = 3;
+  SplitMix64 rng(91);
+  SceneBuilder b{g, demo.labels, rng, 3};
+  const double d = opt.density, sz = 1 / std::sqrt(d);
+  const double wall_y = 2.2;
+  for (int i = 0, n = int(10000 * d); i < n; ++i) {  // painted wall with a skirting board
+    const Vec3 p{rng.range(-3.4, 3.4), wall_y, rng.range(0, 2.8)};
+    const Vec3 c = p.z < 0.1 ? Vec3{0.92, 0.92, 0.90} : Vec3{0.55, 0.63, 0.58} + Vec3{1, 1, 1} * (0.03 * cell_noise(int((p.x + 10) * 3), int(p.z * 3)));
+    b.splat(p, {0, -1, 0}, 0.055 * sz, c, -1, 0.02);
+  }
+  for (int i = 0, n = int(9000 * d); i < n; ++i) {  // light oak floor
+    const Vec3 p{rng.range(-3.4, 3.4), rng.range(-2.6, wall_y), 0};
+    const int board = int(std::floor((p.x + 10) / 0.16));
+    b.splat(p, {0, 0, 1}, 0.055 * sz, Vec3{0.70, 0.56, 0.40} + Vec3{1, 0.8, 0.6} * (0.08 * cell_noise(board, int(p.y))), -1, 0.04);
+  }
+  // A bicycle leaning on the wall, 6 cm from it: two spoked wheels and a thin frame.
+  const double bike_y = wall_y - 0.08;
+  const Vec3 rear{-1.9, bike_y, 0.34}, front{-0.85, bike_y, 0.34};
+  const int bike = add_object(demo, "bicycle", {-1.37, bike_y, 0.5}, 0.8f);
+  const Vec3 metal{0.75, 0.12, 0.10}, tyre{0.08, 0.08, 0.08}, spoke{0.7, 0.7, 0.72};
+  for (const Vec3& hub : {rear, front}) {
+    for (int i = 0; i < 160; ++i) {  // the tyre: a ring of strips
+      const double a = 2 * M_PI * i / 160;
+      const Vec3 r{std::cos(a), 0, std::sin(a)};
+      b.strip(hub + r * 0.33, {0, -1, 0}, {-std::sin(a), 0, std::cos(a)}, 0.018, 0.03, tyre, bike, 0.03);
+    }
+    for (int k = 0; k < 16; ++k) {  // spokes, 3 mm
+      const double a = 2 * M_PI * k / 16;
+      const Vec3 r{std::cos(a), 0, std::sin(a)};
+      for (double t = 0.03; t < 0.31; t += 0.02) b.strip(hub + r * t, {0, -1, 0}, r, 0.022, 0.003, spoke, bike, 0.08);
+    }
+  }
+  const Vec3 crank{-1.4, bike_y, 0.36}, seat{-1.55, bike_y, 0.85}, head{-0.98, bike_y, 0.88};
+  for (const auto& [a, c] : std::vector<std::pair<Vec3, Vec3>>{{rear, crank}, {rear, seat}, {crank, seat}, {crank, head},
+                                                               {seat, head}, {head, front}, {seat, seat + Vec3{-0.03, 0, 0.1}},
+                                                               {head, head + Vec3{0.04, 0, 0.12}}})
+    tube(b, a, c, 0.016, 0.016, int(120 * d) + 30, 0.008 * sz, metal, bike);
+  tube(b, seat + Vec3{-0.12, 0, 0.11}, seat + Vec3{0.08, 0, 0.11}, 0.035, 0.025, int(80 * d) + 20, 0.01 * sz, tyre, bike);
+  tube(b, head + Vec3{0.04, -0.25, 0.12}, head + Vec3{0.04, 0.2, 0.12}, 0.012, 0.012, int(80 * d) + 20, 0.008 * sz, tyre, bike);
+  // A rug lying flat on the floor, patterned, 1 cm thick.
+  const Vec3 rug_c{0.4, 0.3, 0.01};
+  const int rug = add_object(demo, "rug", rug_c, 1.0f);
+  for (int i = 0, n = int(9000 * d); i < n; ++i) {
+    const double x = rng.range(-0.9, 0.9), y = rng.range(-0.6, 0.6);
+    const bool border = std::abs(x) > 0.8 || std::abs(y) > 0.5;
+    const bool diamond = std::fmod(std::abs(x) + std::abs(y) + 10, 0.3) < 0.1;
+    const Vec3 c = border ? Vec3{0.25, 0.12, 0.30} : (diamond ? Vec3{0.80, 0.62, 0.30} : Vec3{0.55, 0.18, 0.16});
+    b.splat(rug_c + Vec3{x, y, 0}, {0, 0, 1}, 0.035 * sz, c, rug, 0.01);
+  }
+  // A low cabinet against the wall with a dark television standing on it.
+  const Vec3 cab_c{1.55, wall_y - 0.25, 0};
+  box(b, cab_c + Vec3{0, 0, 0.25}, 0.22, 0.25, int(1500 * d), 0.03 * sz, {0.90, 0.88, 0.84}, {0.7, 0.68, 0.64}, -1);
+  box(b, cab_c + Vec3{0.44, 0, 0.25}, 0.22, 0.25, int(1500 * d), 0.03 * sz, {0.90, 0.88, 0.84}, {0.7, 0.68, 0.64}, -1);
+  const Vec3 tv_c = cab_c + Vec3{0.22, 0.05, 0.5};
+  const int tv = add_object(demo, "television", tv_c + Vec3{0, 0, 0.35}, 0.6f);
+  for (int i = 0, n = int(2000 * d); i < n; ++i) {  // the screen: a thin dark slab, a glossy face
+    const double x = rng.range(-0.5, 0.5), z = rng.range(0.08, 0.64);
+    const int face = int(rng.uniform() * 6);
+    if (face < 4) b.splat(tv_c + Vec3{x, -0.03, z}, {0, -1, 0}, 0.02 * sz, {0.05, 0.05, 0.07}, tv, 0.3);
+    else if (face == 4) b.splat(tv_c + Vec3{x, 0.0, z}, {0, 1, 0}, 0.025 * sz, {0.12, 0.12, 0.12}, tv, 0.02);
+    else b.splat(tv_c + Vec3{x < 0 ? -0.5 : 0.5, rng.range(-0.03, 0.0), z}, {x < 0 ? -1.0 : 1.0, 0, 0}, 0.01 * sz, {0.1, 0.1, 0.1}, tv, 0.02);
+  }
+  tube(b, tv_c + Vec3{0, 0, 0.0}, tv_c + Vec3{0, 0, 0.1}, 0.03, 0.03, 80, 0.01 * sz, {0.1, 0.1, 0.1}, tv);
+  for (int i = 0; i < 200; ++i)  // its foot
+    b.splat(tv_c + Vec3{rng.range(-0.15, 0.15), rng.range(-0.08, 0.08), 0.005}, {0, 0, 1}, 0.015 * sz, {0.1, 0.1, 0.1}, tv, 0.02);
+  // A coffee table on the rug with a vase of flowers on it.
+  const Vec3 table_c{0.4, 0.2, 0};
+  for (int i = 0, n = int(1800 * d); i < n; ++i)
+    b.splat(table_c + Vec3{rng.range(-0.45, 0.45), rng.range(-0.28, 0.28), 0.42}, {0, 0, 1}, 0.03 * sz, {0.30, 0.20, 0.12}, -1, 0.05);
+  for (double lx : {-0.4, 0.4})
+    for (double ly : {-0.23, 0.23})
+      cylinder(b, table_c + Vec3{lx, ly, 0}, 0.02, 0.02, 0.42, int(100 * d) + 30, 0.012 * sz, {0.25, 0.17, 0.1}, -1, false);
+  const Vec3 vase_c = table_c + Vec3{0.15, 0.0, 0.42};
+  const int vase = add_object(demo, "vase", vase_c + Vec3{0, 0, 0.2}, 0.25f);
+  cylinder(b, vase_c, 0.05, 0.07, 0.2, int(600 * d) + 100, 0.01 * sz, {0.20, 0.35, 0.65}, vase, false, 0.05);
+  for (int f = 0; f < 7; ++f) {  // stems and flower heads above it
+    const double a = f * 0.9, lean = 0.06 + 0.02 * (f % 3);
+    const Vec3 top = vase_c + Vec3{lean * std::cos(a), lean * std::sin(a), 0.38 + 0.03 * (f % 2)};
+    tube(b, vase_c + Vec3{0, 0, 0.18}, top, 0.004, 0.004, 40, 0.004, {0.3, 0.5, 0.2}, vase);
+    for (int k = 0; k < 60; ++k) {
+      Vec3 u{rng.normal(), rng.normal(), rng.normal()};
+      u = normalized(u);
+      b.splat(top + u * 0.025, u, 0.012, f % 2 ? Vec3{0.95, 0.85, 0.2} : Vec3{0.95, 0.95, 0.92}, vase, 0.03);
+    }
+  }
+  // The capture: a half orbit at two heights around the room's middle.
+  const Vec3 target{0.0, 0.9, 0.5};
+  int id = 0;
+  for (int row = 0; row < 2; ++row)
+    for (int k = 0; k < 11; ++k) {
+      const double a = (-70 + 140.0 * k / 10) * M_PI / 180;
+      const Vec3 eye{target.x + 3.6 * std::sin(a), target.y - 3.6 * std::cos(a), row ? 1.9 : 1.2};
+      demo.bundle.cameras.push_back(named(Camera::look_at(eye, target, {0, 0, 1}, opt.width, opt.height, 64.0), id++, "orbit"));
+    }
+  add_task(s, "bicycle", "a thin frame and spoked wheels leaning on a wall", bike, crank + Vec3{0.12, -0.03, 0.2}, 5);
+  add_task(s, "rug", "a flat rug lying on the floor, partly under a table", rug, rug_c + Vec3{-0.6, -0.3, 0.0}, 16);
+  add_task(s, "television", "a dark screen on a cabinet against the wall", tv, tv_c + Vec3{0, -0.04, 0.35}, 8);
+  add_task(s, "vase", "a vase of flowers on a table", vase, vase_c + Vec3{0, -0.07, 0.1}, 13);
+  return s;
+}
+
 EvalScene orbit_demo(const EvalSetOptions& opt) {
   EvalScene s;
   s.name = "orbit";
@@ -844,6 +954,7 @@ std::vector<EvalScene> make_eval_scenes(const EvalSetOptions& opt) {
   out.push_back(study(opt));
   out.push_back(kitchen(opt));
   out.push_back(museum(opt));
+  out.push_back(lounge(opt));
   return out;
 }
 

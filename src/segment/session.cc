@@ -75,8 +75,8 @@ int borders_reached(const Image& m) {
   return int(top) + int(bottom) + int(left) + int(right);
 }
 
-// The clicked view's candidate. SAM's own choice, unless it runs past the frame on three or
-// four sides (the wall or floor around the click: a pale skull on a pale wall) while another
+// A clicked view's candidate (the user's view, or one a click was propagated to). SAM's own
+// choice, unless it runs past the frame on three or four sides (the wall or floor around the click: a pale skull on a pale wall) while another
 // candidate holding every positive click stays off all borders but one (an object the click
 // picks out); then the largest such candidate. A click that means the surroundings still
 // gets them from a second view or click; one that means the object gets it at once.
@@ -616,6 +616,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // the first view votes with (-1: SAM's own choice).
   const std::vector<ViewState> unjudged = fresh;
   size_t first_view = 0;
+  // SAM's choice in a clicked view, or the object candidate the prior prefers to it.
+  auto clicked_candidate = [&](const models::SegmentResult& r, const ViewState& vs) {
+    return o.object_prior ? object_candidate(r, vs.clicks, o.min_object_score) : r.mask_index;
+  };
   auto inspect_and_vote = [&](int forced_first) {
     fresh = unjudged;
     acc = VoteAccumulator(scene_.size());
@@ -643,7 +647,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
           coverage = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
           take_candidate(vs, r, inspect ? fallback_candidate(r, coverage) : choose(r, &coverage, o.min_coverage_pixels));
         } else {  // one pass over the mask's pixels gives the selection's coverage there and the mask's votes
-          take_candidate(vs, r, r.mask_index);
+          take_candidate(vs, r, clicked_candidate(r, vs));
           if (vs.mask_pixels > 0) {
             TimeInto timed{part.mask_votes};
             mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
@@ -652,11 +656,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
           }
         }
       } else {
-        take_candidate(vs, r,
-                       !first              ? r.mask_index
-                       : forced_first >= 0 ? forced_first
-                       : o.object_prior    ? object_candidate(r, vs.clicks, o.min_object_score)
-                                           : r.mask_index);
+        take_candidate(vs, r, first && forced_first >= 0 ? forced_first : clicked_candidate(r, vs));
       }
       if (first) first_view = k;
       if (vs.mask_pixels == 0) {

@@ -68,9 +68,9 @@ struct SessionOptions {
   // A prompted mask has no click of its own, so it must agree more: hold this share of the
   // rendered selection and be covered this much by it (or reach min_prompt_iou).
   double min_prompt_inside = 0.7, min_prompt_on_selection = 0.3, min_prompt_iou = 0.5;
-  // In the clicked view, a candidate that stays inside the frame (an object) is taken over
-  // SAM's choice when that runs past three or four image borders (the surroundings), and
-  // granularity consensus does not grow into such a candidate.
+  // In a view with clicks, a candidate that stays inside the frame (an object) and holds
+  // them is taken over SAM's choice when that runs past three or four image borders (the
+  // surroundings), and granularity consensus does not grow into such a candidate.
   bool object_prior = true;
   double min_object_score = 0.75;  // SAM's predicted IoU the object candidate needs
   // Negative clicks cut what SAM segments at them from the mask, instead of being given
