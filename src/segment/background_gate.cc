@@ -397,8 +397,12 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
     to.index.push_back(g);
     to.weight.push_back(positive.weight[k]);
   }
-  if (moved.index.empty() || (selected > 0 && selected_moved > 0.5 * selected) ||
-      (at_seeds > 0 && at_seeds_moved > 0.5 * at_seeds))
+  // What the target is: the Gaussians at this view's clicks when it has any (a selection
+  // may already hold what an earlier view's gaps showed: the wall inside a bicycle's
+  // wheels), else the selection.
+  const bool by_seeds = at_seeds > 0;
+  if (moved.index.empty() || (by_seeds && at_seeds_moved > 0.5 * at_seeds) ||
+      (!by_seeds && selected > 0 && selected_moved > 0.5 * selected))
     return 0;
   // Merge into `neutral`, keeping it ascending.
   ViewVotes merged;

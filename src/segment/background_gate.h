@@ -68,7 +68,8 @@ struct BackgroundTarget {
 // onto a pixel with a background estimate and lies on or behind that surface. Nothing is
 // moved when that would take the target itself: most of the weight of the Gaussians centred
 // within seed_radius of a click (the object is not told from the surroundings by depth
-// here), or more than half of the selection's weight in the mask. Returns the number moved.
+// here), or, where the view has no click, more than half of the selection's weight in the
+// mask. Returns the number moved.
 // `threads` (0: every core) does not change the result.
 size_t gate_background(const GaussianScene& scene, const Camera& camera, const Image& background,
                        const BackgroundTarget& target, ViewVotes& positive, ViewVotes& neutral,
