@@ -81,7 +81,9 @@ int borders_reached(const Image& m) {
 // picks out); then the largest such candidate. A click that means the surroundings still
 // gets them from a second view or click; one that means the object gets it at once.
 int object_candidate(const models::SegmentResult& r, const std::vector<Click>& clicks, double min_score) {
-  if (r.candidates.size() < 2 || borders_reached(r.candidates[size_t(r.mask_index)]) < 3) return r.mask_index;
+  const bool positive = std::any_of(clicks.begin(), clicks.end(), [](const Click& k) { return k.label == 1; });
+  if (!positive || r.candidates.size() < 2 || borders_reached(r.candidates[size_t(r.mask_index)]) < 3)
+    return r.mask_index;
   int best = r.mask_index;
   size_t best_area = 0;
   for (size_t c = 0; c < r.candidates.size(); ++c) {

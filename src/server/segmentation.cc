@@ -274,27 +274,35 @@ bool Segmentation::choose_views_for(const ClickRecord& c, const Progress& progre
   std::vector<int> have = view_cameras();
   std::sort(have.begin(), have.end());
   if (have == chosen) return false;
-  // Every built view of this scene is a candidate: the session's and the spare ones.
-  std::vector<segment::SegmentView> pool = session_->take_views();
-  session_.reset();
-  if (spare_fingerprint_ == fingerprint_)
-    for (segment::SegmentView& v : spare_) pool.push_back(std::move(v));
-  spare_.clear();
+  // Every built view of this scene is a candidate: the session's and the spare ones. The
+  // missing ones are built first, so a failure leaves the session as it was.
+  if (spare_fingerprint_ != fingerprint_) spare_.clear();
   spare_fingerprint_ = fingerprint_;
-  std::vector<segment::SegmentView> views;
+  auto built = [&](int camera) {
+    auto has = [&](const segment::SegmentView& v) { return v.camera_index == camera; };
+    return std::any_of(session_->views().begin(), session_->views().end(), has) ||
+           std::any_of(spare_.begin(), spare_.end(), has);
+  };
+  std::vector<segment::SegmentView> fresh;
   for (size_t i = 0; i < chosen.size(); ++i) {
-    auto it = std::find_if(pool.begin(), pool.end(), [&](const segment::SegmentView& v) { return v.camera_index == chosen[i]; });
-    if (it != pool.end()) {
-      views.push_back(std::move(*it));
-      pool.erase(it);
-      continue;
-    }
+    if (built(chosen[i])) continue;
     const std::string& name = snapshot_->cameras[size_t(chosen[i])].name;
     if (progress) progress(int(i), int(chosen.size()), "view " + name + " sees the clicked point: render + SAM embedding");
-    views.push_back(segment::build_view(snapshot_->gaussians, snapshot_->cameras[size_t(chosen[i])], chosen[i], *sam_,
+    fresh.push_back(segment::build_view(snapshot_->gaussians, snapshot_->cameras[size_t(chosen[i])], chosen[i], *sam_,
                                         view_options_));
   }
   models::trim_tensor_memory_pool();
+  std::vector<segment::SegmentView> pool = session_->take_views();
+  session_.reset();
+  for (segment::SegmentView& v : spare_) pool.push_back(std::move(v));
+  for (segment::SegmentView& v : fresh) pool.push_back(std::move(v));
+  spare_.clear();
+  std::vector<segment::SegmentView> views;
+  for (const int camera : chosen) {
+    auto it = std::find_if(pool.begin(), pool.end(), [&](const segment::SegmentView& v) { return v.camera_index == camera; });
+    views.push_back(std::move(*it));  // present: built above or before
+    pool.erase(it);
+  }
   for (segment::SegmentView& v : pool)
     if (v.camera_index >= 0) spare_.push_back(std::move(v));  // a later click elsewhere may need them
   trim_cache();
