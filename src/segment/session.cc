@@ -76,10 +76,11 @@ int borders_reached(const Image& m) {
 }
 
 // A clicked view's candidate (the user's view, or one a click was propagated to). SAM's own
-// choice, unless it runs past the frame on three or four sides (the wall or floor around the click: a pale skull on a pale wall) while another
-// candidate holding every positive click stays off all borders but one (an object the click
-// picks out); then the largest such candidate. A click that means the surroundings still
-// gets them from a second view or click; one that means the object gets it at once.
+// choice, unless it runs past the frame on three or four sides (the wall or floor around the
+// click: a pale skull on a pale wall) while another candidate holding every positive click
+// stays off all borders but one (an object the click picks out); then the largest such
+// candidate. A click that means the surroundings still gets them from a second view or
+// click; one that means the object gets it at once.
 int object_candidate(const models::SegmentResult& r, const std::vector<Click>& clicks, double min_score) {
   const bool positive = std::any_of(clicks.begin(), clicks.end(), [](const Click& k) { return k.label == 1; });
   if (!positive || r.candidates.size() < 2 || borders_reached(r.candidates[size_t(r.mask_index)]) < 3)
