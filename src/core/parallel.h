@@ -65,7 +65,13 @@ inline void parallel_for(size_t tasks, int threads, const std::function<void(int
   if (error) std::rethrow_exception(error);
 }
 
-// Splits [0, n) into chunks of `grain` and runs fn(worker, begin, end) on each.
+// Chunk size for per-element passes over long lists (a view's votes, a mask's Gaussians):
+// a list no longer than one chunk runs on the calling thread, where starting workers would
+// cost more than the pass.
+constexpr size_t kListGrain = size_t(1) << 16;
+
+// Splits [0, n) into chunks of `grain` and runs fn(worker, begin, end) on each (one chunk:
+// on the calling thread).
 inline void parallel_chunks(size_t n, size_t grain, int threads,
                             const std::function<void(int, size_t, size_t)>& fn) {
   const size_t chunks = (n + grain - 1) / grain;

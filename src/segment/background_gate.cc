@@ -330,11 +330,10 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   // relative to the surface's, minus 1 (> 0: in front of it; NaN: no estimate there).
   // Per Gaussian and independent, so in parallel chunks (the two passes below).
   const size_t n = positive.index.size();
-  const int workers = n >= (1 << 16) ? threads : 1;
   std::vector<double> offset(n, std::nan(""));
-  std::vector<float> pixel(2 * n, -1.f);  // where the centre projects
+  std::vector<int32_t> pixel(2 * n, -1);  // where the centre projects
   std::vector<uint8_t> at_seed(n, 0);
-  parallel_chunks(n, 1 << 15, workers, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       const uint32_t g = positive.index[k];
       const Vec3 c = camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]});
@@ -343,8 +342,8 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
       if (u >= 0 && v >= 0 && u < background.width && v < background.height) {
         const float bg = background.at(int(u), int(v));
         if (bg > 0) offset[k] = (1.0 / c.z) / bg - 1;
-        pixel[2 * k] = float(int(u));
-        pixel[2 * k + 1] = float(int(v));
+        pixel[2 * k] = int32_t(u);
+        pixel[2 * k + 1] = int32_t(v);
       }
       for (const BackgroundTarget::Seed& seed : target.seeds)
         if (std::abs(u - seed.x) <= o.seed_radius && std::abs(v - seed.y) <= o.seed_radius) {
@@ -374,11 +373,11 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
     if (median >= 2 * o.min_tolerance && median <= o.tolerance) tolerance = 0.5 * median;
   }
   std::vector<uint8_t> behind_surface(n, 0);
-  parallel_chunks(n, 1 << 15, workers, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k)
       if (!std::isnan(offset[k]) && offset[k] <= tolerance)  // an estimate there: the centre projects in the frame
-        behind_surface[k] = !crosses_surface(scene, camera, background, positive.index[k], int(pixel[2 * k]),
-                                             int(pixel[2 * k + 1]), o.min_alignment);
+        behind_surface[k] = !crosses_surface(scene, camera, background, positive.index[k], pixel[2 * k],
+                                             pixel[2 * k + 1], o.min_alignment);
   });
   ViewVotes kept, moved;
   double selected = 0, selected_moved = 0, at_seeds = 0, at_seeds_moved = 0;

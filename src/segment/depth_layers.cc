@@ -177,7 +177,7 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
   std::vector<char> selected(n, 0);
   std::vector<int32_t> region(n, -1);
   // Per entry, independent: chunks in parallel.
-  parallel_chunks(n, 1 << 15, n >= (1 << 16) ? threads : 1, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       const uint32_t g = positive.index[k];
       const Vec3 centre{scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]};

@@ -40,18 +40,13 @@ ViewVotes masked_votes(const PreparedFrame& frame, const Image& mask, int thread
 }
 
 namespace {
-// Lists shorter than this are summed on the calling thread (starting workers costs more).
-constexpr size_t kParallelFrom = 1 << 16;
-
 // into[index[k]] += sign * weight[k]. A view's list names each Gaussian once, so chunks of
 // it write disjoint sums, and integer sums do not depend on the order.
 void scatter_add(ZeroedArray<int64_t>& into, const ViewVotes& v, int64_t sign, int threads) {
   const size_t n = v.index.size();
-  auto run = [&](int, size_t a, size_t e) {
+  parallel_chunks(n, kListGrain, threads, [&](int, size_t a, size_t e) {
     for (size_t k = a; k < e; ++k) into[v.index[k]] += sign * v.weight[k];
-  };
-  if (n < kParallelFrom || threads == 1) run(0, 0, n);
-  else parallel_chunks(n, kParallelFrom, threads, run);
+  });
 }
 }  // namespace
 
@@ -90,7 +85,7 @@ ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const 
   // Chunks of `positive` in parallel, each into its own list; concatenated in order, the
   // lists are what one pass would give.
   const size_t n = positive.index.size();
-  const size_t grain = std::max(kParallelFrom, (n + 3) / 4);
+  const size_t grain = std::max(kListGrain, (n + 3) / 4);
   std::vector<ViewVotes> parts((n + grain - 1) / grain);
   auto run = [&](int, size_t begin, size_t end) {
     ViewVotes& out = parts[begin / grain];
@@ -118,8 +113,7 @@ ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const 
       out.weight.push_back(total.weight[t]);
     }
   };
-  if (parts.size() > 1 && threads != 1) parallel_chunks(n, grain, threads, run);
-  else if (n) run(0, 0, n);
+  parallel_chunks(n, grain, threads, run);
   if (parts.size() == 1) return std::move(parts[0]);
   ViewVotes out;
   for (const ViewVotes& part : parts) {

@@ -208,6 +208,7 @@ void Segmentation::rebuild(const Progress& progress, const segment::Session* don
     views = std::move(prepared_->views);
     spare_ = std::move(prepared_->extra);
     spare_fingerprint_ = fingerprint_;
+    trim_cache();  // prepared ahead of the budget
     if (progress) progress(int(chosen.size()), total, "views prepared after the edit");
   } else {
     views = build_views(*snapshot_, chosen, donor, donor_scene, progress, total);
