@@ -229,6 +229,16 @@ void register_routes(httplib::Server& server, AppState& app) {
     const uint64_t id = app.click(click_from_json(parse_body(req.body)));
     send_json(res, {{"job", id}}, 202);
   }));
+  // The camera the user looks at: the views a click there would use are built ahead.
+  routes->post("/api/focus", guarded([&app](const httplib::Request& req, httplib::Response& res) {
+    const json body = parse_body(req.body);
+    if (!body.is_object() || !body.contains("view") || !body["view"].is_number_integer())
+      bad_request("focus: expected {\"view\": camera index}");
+    const long long view = body["view"].get<long long>();
+    if (view < 0 || view >= (long long)app.camera_count()) bad_request("view: no camera " + std::to_string(view));
+    app.focus(int(view));
+    send_json(res, {{"focus", view}}, 202);
+  }));
   routes->post("/api/click/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
     send_json(res, {{"job", app.undo_click()}}, 202);
   }));

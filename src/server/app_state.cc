@@ -57,7 +57,10 @@ AppState::AppState(SceneBundle bundle, AppOptions options)
 
 AppState::~AppState() { stop(); }
 
-void AppState::stop() { jobs_.stop(); }
+void AppState::stop() {
+  segmentation_.stop_building_ahead();
+  jobs_.stop();
+}
 
 void AppState::start() { segmentation_.start(); }
 

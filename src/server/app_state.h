@@ -125,6 +125,10 @@ class AppState {
   uint64_t undo_click() { return undo(StepFilter::kClick).job; }
   uint64_t redo_click() { return redo(StepFilter::kClick).job; }
   uint64_t set_settings(const SettingsRequest& request) { return segmentation_.set_settings(request); }
+  // The camera the user looks at: views a click there would use are built in the background.
+  void focus(int camera) { segmentation_.focus(camera); }
+  size_t camera_count() const { return bundle_.cameras.size(); }
+  bool wait_built_ahead(double timeout_seconds) { return segmentation_.wait_built_ahead(timeout_seconds); }
 
   EditResult select(const SelectRequest& request);
   SelectionBounds selection_bounds() const { return scene_.selection_bounds(); }

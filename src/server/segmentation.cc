@@ -29,6 +29,26 @@ bool same_camera(const Camera& a, const Camera& b) {
   return true;
 }
 
+// The training camera nearest a free camera that sees `point` (position relative to the
+// distance to the point, then viewing direction, as the page's nearest camera); the
+// nearest of all when none sees it.
+int nearest_camera(const std::vector<Camera>& cameras, const Camera& free, const Vec3& point) {
+  const Vec3 eye = free.center();
+  const Vec3 forward = free.R.transposed() * Vec3{0, 0, 1};
+  const double scale = std::max(norm(point - eye), 1e-9);
+  int best = 0, best_seeing = -1;
+  double best_score = 1e300, best_seeing_score = 1e300;
+  for (size_t i = 0; i < cameras.size(); ++i) {
+    const Camera& c = cameras[i];
+    const double score = norm(c.center() - eye) / scale + (1 - dot(c.R.transposed() * Vec3{0, 0, 1}, forward));
+    if (score < best_score) best_score = score, best = int(i);
+    double u = 0, v = 0;
+    const bool sees = c.project(point, u, v) && u >= 0 && u < c.width && v >= 0 && v < c.height;
+    if (sees && score < best_seeing_score) best_seeing_score = score, best_seeing = int(i);
+  }
+  return best_seeing >= 0 ? best_seeing : best;
+}
+
 // Bytes of a scene copy's parameter arrays.
 size_t scene_bytes(const GaussianScene& g) {
   size_t n = (g.positions.capacity() + g.normals.capacity() + g.sh.capacity() + g.opacity.capacity() +
@@ -258,35 +278,76 @@ int Segmentation::view_for(const ClickRecord& c, const Progress& progress) {
   return k;
 }
 
-bool Segmentation::choose_views_for(const ClickRecord& c, const Progress& progress) {
+bool Segmentation::has_view_of(int camera) const {
+  auto has = [&](const segment::SegmentView& v) { return v.camera_index == camera; };
+  if (session_ && std::any_of(session_->views().begin(), session_->views().end(), has)) return true;
+  return spare_fingerprint_ == fingerprint_ && std::any_of(spare_.begin(), spare_.end(), has);
+}
+
+bool Segmentation::prefetch_one(int camera, const Progress& progress) {
   int k_views = 0;
-  if (c.camera_index < 0 || hidden_of(c) || !session_->clicks().empty() ||
+  if (!session_ || !log_.empty() || camera < 0 || camera >= int(snapshot_->cameras.size()) ||
       !segment::parse_auto_views(settings_.views_spec, k_views) || int(snapshot_->cameras.size()) <= k_views)
     return false;
-  for (const AddedView& f : free_views_)
-    if (f.camera) return false;  // a free camera's view stays with its session
+  if (spare_fingerprint_ != fingerprint_) spare_.clear();
+  spare_fingerprint_ = fingerprint_;
+  const segment::SegmentView* own = nullptr;
+  for (const segment::SegmentView& v : session_->views())
+    if (v.camera_index == camera) own = &v;
+  for (const segment::SegmentView& v : spare_)
+    if (v.camera_index == camera) own = &v;
+  std::vector<int> wanted;
+  if (own) {
+    // The user clicks what they look at: the centre's surface stands in for the click.
+    Vec3 point;
+    const Camera& vc = own->camera;
+    if (!segment::surface_point(*own, vc.cx, vc.cy, base_session_.propagation.min_alpha, point)) return false;
+    wanted = segment::select_views_for_point(snapshot_->cameras, camera, point, k_views);
+  } else {
+    wanted = {camera};
+  }
+  for (const int c : wanted) {
+    if (has_view_of(c)) continue;
+    // Room for one more view (estimated as the size of a built one) without evicting any.
+    const size_t one = session_->views().empty() ? 0 : segment::view_bytes(session_->views().front());
+    if (kept_bytes() + spare_bytes() + one > kept_budget_) return false;
+    const std::string& name = snapshot_->cameras[size_t(c)].name;
+    if (progress) progress(0, 1, "building ahead the view " + name + " (likely used by a click in " +
+                                     snapshot_->cameras[size_t(camera)].name + ")");
+    spare_.push_back(segment::build_view(snapshot_->gaussians, snapshot_->cameras[size_t(c)], c, *sam_, view_options_));
+    return true;
+  }
+  // All built: the encoder's cached activation blocks go back (kept while building on).
+  models::trim_tensor_memory_pool();
+  return false;
+}
+
+bool Segmentation::choose_views_for(const ClickRecord& c, const Progress& progress) {
+  int k_views = 0;
+  if ((c.camera_index < 0 && !c.free_camera) || hidden_of(c) || !session_->clicks().empty() ||
+      !segment::parse_auto_views(settings_.views_spec, k_views) || int(snapshot_->cameras.size()) <= k_views)
+    return false;
   const int k = view_for(c, progress);
   const segment::SegmentView& clicked = session_->views()[size_t(k)];
-  const Camera& full = snapshot_->cameras.at(size_t(c.camera_index));
+  const Camera& full = c.free_camera ? *c.free_camera : snapshot_->cameras.at(size_t(c.camera_index));
   const Click at = rescaled(c.click, full.width, full.height, clicked.camera.width, clicked.camera.height);
   Vec3 point;
   if (!segment::surface_point(clicked, at.x, at.y, base_session_.propagation.min_alpha, point)) return false;
-  std::vector<int> chosen = segment::select_views_for_point(snapshot_->cameras, c.camera_index, point, k_views);
-  std::vector<int> have = view_cameras();
+  // A free camera's views are chosen around the training camera nearest it.
+  const int anchor = c.free_camera ? nearest_camera(snapshot_->cameras, *c.free_camera, point) : c.camera_index;
+  std::vector<int> chosen = segment::select_views_for_point(snapshot_->cameras, anchor, point, k_views);
+  std::vector<int> have;
+  for (const int camera : view_cameras())
+    if (camera >= 0) have.push_back(camera);
   std::sort(have.begin(), have.end());
   if (have == chosen) return false;
   // Every built view of this scene is a candidate: the session's and the spare ones. The
   // missing ones are built first, so a failure leaves the session as it was.
   if (spare_fingerprint_ != fingerprint_) spare_.clear();
   spare_fingerprint_ = fingerprint_;
-  auto built = [&](int camera) {
-    auto has = [&](const segment::SegmentView& v) { return v.camera_index == camera; };
-    return std::any_of(session_->views().begin(), session_->views().end(), has) ||
-           std::any_of(spare_.begin(), spare_.end(), has);
-  };
   std::vector<segment::SegmentView> fresh;
   for (size_t i = 0; i < chosen.size(); ++i) {
-    if (built(chosen[i])) continue;
+    if (has_view_of(chosen[i])) continue;
     const std::string& name = snapshot_->cameras[size_t(chosen[i])].name;
     if (progress) progress(int(i), int(chosen.size()), "view " + name + " sees the clicked point: render + SAM embedding");
     fresh.push_back(segment::build_view(snapshot_->gaussians, snapshot_->cameras[size_t(chosen[i])], chosen[i], *sam_,
@@ -295,6 +356,15 @@ bool Segmentation::choose_views_for(const ClickRecord& c, const Progress& progre
   models::trim_tensor_memory_pool();
   std::vector<segment::SegmentView> pool = session_->take_views();
   session_.reset();
+  // Views added for clicks (free cameras, renders without hidden Gaussians) stay, after the chosen ones.
+  std::vector<segment::SegmentView> added_views;
+  std::vector<AddedView> added;
+  for (size_t i = 0; i < pool.size(); ++i)
+    if (i < free_views_.size() && free_views_[i].camera) {
+      added_views.push_back(std::move(pool[i]));
+      added.push_back(std::move(free_views_[i]));
+      pool[i].camera_index = -1;  // moved from: not a spare
+    }
   for (segment::SegmentView& v : spare_) pool.push_back(std::move(v));
   for (segment::SegmentView& v : fresh) pool.push_back(std::move(v));
   spare_.clear();
@@ -307,8 +377,12 @@ bool Segmentation::choose_views_for(const ClickRecord& c, const Progress& progre
   for (segment::SegmentView& v : pool)
     if (v.camera_index >= 0) spare_.push_back(std::move(v));  // a later click elsewhere may need them
   trim_cache();
+  free_views_.assign(views.size(), {});
+  for (size_t i = 0; i < added_views.size(); ++i) {
+    views.push_back(std::move(added_views[i]));
+    free_views_.push_back(std::move(added[i]));
+  }
   session_ = std::make_unique<segment::Session>(snapshot_->gaussians, std::move(views), sam_, session_options());
-  free_views_.assign(session_->views().size(), {});
   return true;
 }
 

@@ -88,6 +88,14 @@ class Segmentation {
   size_t spare_bytes() const;  // of the spare views
   // Cameras of the current session's views, in its order.
   std::vector<int> view_cameras() const;
+  // Builds ahead (render + SAM embedding) one view a first click in camera `camera` is
+  // likely to use, in order: the camera's own view, then the views choose_views_for would
+  // pick for a click at its image centre. Built views wait as spares. True when a view was
+  // built; false when there is nothing to build: the views are not "auto", the segmentation
+  // has clicks (its views are chosen), all are built, or the kept budget has no room.
+  bool prefetch_one(int camera, const Progress& progress);
+  // Cameras with a built view: the session's and the spares.
+  bool has_view_of(int camera) const;
   // Makes the kept segmentation of `fingerprint` current (the current one is kept);
   // false when there is none.
   bool restore(uint64_t fingerprint);
@@ -116,9 +124,10 @@ class Segmentation {
  private:
   int view_for(const ClickRecord& click, const Progress& progress);
   // With an "auto" / "auto:K" view spec and more cameras than K, the first click of a
-  // segmentation, in a training camera, chooses its views as `segment` does: the K cameras
-  // that best see the clicked surface point, spread around it (view_selection.h), so a
-  // click's cost does not grow with the number of cameras and every view sees the target.
+  // segmentation chooses its views as `segment` does: the K cameras that best see the
+  // clicked surface point, spread around it (view_selection.h), so a click's cost does not
+  // grow with the number of cameras and every view sees the target. A free camera's click
+  // chooses them from the training camera nearest it and keeps its own view after them.
   // Built views are reused (the others wait as spares); true when the views changed.
   bool choose_views_for(const ClickRecord& click, const Progress& progress);
   // The clicked camera rendered without the hidden Gaussians (their opacity zeroed, so the

@@ -31,6 +31,87 @@ SegmentationJobs::SegmentationJobs(const SceneBundle& bundle, SegmentationOption
   }
 }
 
+SegmentationJobs::~SegmentationJobs() { stop_building_ahead(); }
+
+void SegmentationJobs::focus(int camera) {
+  if (!options_.enabled || camera < 0 || camera >= int(bundle_.cameras.size())) return;
+  std::lock_guard<std::mutex> lock(ahead_mu_);
+  if (ahead_stop_) return;
+  // The same camera again re-checks too: an edit or a cleared segmentation may want views.
+  focus_ = camera;
+  ahead_done_ = false;
+  if (!ahead_thread_.joinable()) ahead_thread_ = std::thread([this] { build_ahead_loop(); });
+  ahead_cv_.notify_all();
+}
+
+void SegmentationJobs::rearm_building_ahead() {
+  std::lock_guard<std::mutex> lock(ahead_mu_);
+  if (focus_ < 0 || ahead_stop_) return;
+  ahead_done_ = false;
+  ahead_cv_.notify_all();
+}
+
+bool SegmentationJobs::wait_built_ahead(double timeout_seconds) {
+  std::unique_lock<std::mutex> lock(ahead_mu_);
+  return ahead_cv_.wait_for(lock, std::chrono::duration<double>(timeout_seconds), [&] { return ahead_done_; });
+}
+
+void SegmentationJobs::stop_building_ahead() {
+  {
+    std::lock_guard<std::mutex> lock(ahead_mu_);
+    ahead_stop_ = true;
+    ahead_cv_.notify_all();
+  }
+  if (ahead_thread_.joinable()) ahead_thread_.join();
+}
+
+void SegmentationJobs::build_ahead_loop() {
+  std::unique_lock<std::mutex> lock(ahead_mu_);
+  int built = 0;
+  auto t0 = std::chrono::steady_clock::now();
+  for (;;) {
+    ahead_cv_.wait(lock, [&] { return ahead_stop_ || !ahead_done_; });
+    if (ahead_stop_) return;
+    const int camera = focus_;
+    if (built == 0) t0 = std::chrono::steady_clock::now();
+    lock.unlock();
+    // The user's work first: wait while a job runs or is queued.
+    if (jobs_.busy()) {
+      lock.lock();
+      ahead_cv_.wait_for(lock, std::chrono::milliseconds(100));
+      continue;
+    }
+    bool more = false;
+    {
+      std::lock_guard<std::mutex> seg_lock(seg_mu_);
+      bool ready = false;
+      {
+        std::lock_guard<std::mutex> status_lock(status_mu_);
+        ready = published_.state == "ready";
+      }
+      try {
+        if (ready && seg_ && seg_->is_open() && seg_->fingerprint() == scene_.fingerprint())
+          more = seg_->prefetch_one(camera, nullptr);
+      } catch (const std::exception& e) {
+        log_.note(std::string("building views ahead stopped: ") + e.what(), "warn");
+      }
+    }
+    built += more;
+    lock.lock();
+    if (!more && focus_ == camera) {
+      ahead_done_ = true;
+      ahead_cv_.notify_all();
+      if (built > 0) {
+        char line[200];
+        std::snprintf(line, sizeof line, "built %d view(s) ahead for a click in camera %d (%.1f s)", built, camera,
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        log_.note(line);
+      }
+      built = 0;
+    }
+  }
+}
+
 void SegmentationJobs::start() {
   if (!options_.enabled) return;
   jobs_.submit("prepare segmentation", [this](const JobRunner::Report& report) { prepare_job(report); });
@@ -80,6 +161,7 @@ void SegmentationJobs::prepare_job(const JobRunner::Report& report) {
     set_state("ready", kReady);
     publish(false);
     log_.note("segmentation ready: " + std::to_string(seg_->view_count()) + " views");
+    rearm_building_ahead();
   } catch (const std::exception& e) {
     set_state("error", std::string("segmentation could not start: ") + e.what());
     log_.note(std::string("segmentation could not start: ") + e.what(), "error");
@@ -138,6 +220,7 @@ uint64_t SegmentationJobs::submit(const std::string& name, std::function<void(co
     std::lock_guard<std::mutex> seg_lock(seg_mu_);
     try {
       work(report);
+      rearm_building_ahead();
     } catch (const std::exception& e) {
       log_.note(name + " failed: " + e.what(), "error");
       // Whatever happened, show the segmentation as it now is.

@@ -8,11 +8,13 @@
 // status_mu_ (the published status and thumbnails). Request threads never wait on seg_mu_.
 #pragma once
 
+#include <condition_variable>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/scene.h"
@@ -65,7 +67,18 @@ class SegmentationJobs {
   SegmentationJobs(const SceneBundle& bundle, SegmentationOptions options, EditState& scene, JobRunner& jobs,
                    ActivityLog& log);
 
+  ~SegmentationJobs();  // stop_building_ahead()
+
   void start();  // loads SAM and prepares the views (a job)
+
+  // The camera the user looks at (the page sends the shown training camera, or the one
+  // nearest its free camera). While no job runs, a background thread builds the views a
+  // first click there would use (Segmentation::prefetch_one), one at a time, so that click
+  // finds them built; a job waits at most for the view being built. Never throws.
+  void focus(int camera);
+  // Blocks until the views for the focused camera are built (tests); false on timeout.
+  bool wait_built_ahead(double timeout_seconds);
+  void stop_building_ahead();  // joins the thread; idempotent
 
   uint64_t click(const ClickRecord& click);
   // The one history (EditState's timeline) walked back or forward over a click made on
@@ -107,6 +120,17 @@ class SegmentationJobs {
   std::mutex seg_mu_;
   std::shared_ptr<const models::SamModel> sam_;
   std::unique_ptr<Segmentation> seg_;
+
+  void build_ahead_loop();
+  void rearm_building_ahead();  // after a job: the focused camera may want views again
+
+  // The builder's own state (never held while taking seg_mu_).
+  std::mutex ahead_mu_;
+  std::condition_variable ahead_cv_;
+  int focus_ = -1;
+  bool ahead_done_ = true;   // nothing left to build for focus_
+  bool ahead_stop_ = false;
+  std::thread ahead_thread_;  // started by the first focus()
 
   mutable std::mutex status_mu_;
   SegmentationStatus published_;

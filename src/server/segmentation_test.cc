@@ -213,6 +213,76 @@ TEST(Segmentation, AutoViewsAreChosenAroundTheFirstClick) {
   again.click.x += 1;
   s.click(again, nullptr);
   EXPECT_EQ(s.view_cameras(), around);
+  // A click in a free camera (placed where that camera is) chooses the same views around
+  // the clicked point and keeps its own view after them.
+  Segmentation f(sam, {}, vo, settings);
+  f.open(scene, scene->gaussians.fingerprint(), nullptr);
+  ClickRecord free_click = c;
+  free_click.camera_index = -1;
+  free_click.free_camera = d.bundle.cameras[size_t(cam)];
+  f.click(free_click, nullptr);
+  std::vector<int> with_free = f.view_cameras();
+  ASSERT_EQ(with_free.size(), 5u);
+  EXPECT_EQ(with_free.back(), -1);
+  with_free.pop_back();
+  EXPECT_EQ(with_free, around);
+  EXPECT_GT(f.selected_count(), 0u);
+  // Its second click reuses its view.
+  free_click.click.x += 1;
+  f.click(free_click, nullptr);
+  EXPECT_EQ(f.view_cameras().size(), 5u);
+}
+
+// The views a click in a looked-at camera would use, built ahead while the user looks,
+// serve that click: it builds nothing and selects what building them at the click does.
+TEST(Segmentation, ViewsBuiltAheadForALookedAtCameraServeItsFirstClick) {
+  const auto sam = test_sam();
+  if (!sam) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  const DemoScene d = small_demo(12);
+  const segment::ViewOptions vo = small_views();
+  SegmentSettings settings;
+  settings.views_spec = "auto:4";
+  auto scene = std::make_shared<SceneBundle>(d.bundle);
+  // A camera that is not one of the spread views, clicked at its image centre (what
+  // building ahead takes as the click).
+  Segmentation s(sam, {}, vo, settings);
+  s.open(scene, scene->gaussians.fingerprint(), nullptr);
+  const std::vector<int> spread = s.view_cameras();
+  int cam = 0;
+  while (std::find(spread.begin(), spread.end(), cam) != spread.end()) ++cam;
+  const Camera& full = d.bundle.cameras[size_t(cam)];
+  ClickRecord c;
+  c.camera_index = cam;
+  c.click = {full.cx, full.cy, 1};
+
+  // No room in the budget: nothing is built.
+  s.set_kept_budget(0);
+  EXPECT_FALSE(s.prefetch_one(cam, nullptr));
+  EXPECT_FALSE(s.has_view_of(cam));
+  s.set_kept_budget(size_t(1) << 30);
+  int built = 0;
+  while (s.prefetch_one(cam, nullptr)) ++built;
+  EXPECT_TRUE(s.has_view_of(cam));
+  EXPECT_GE(built, 1);
+  EXPECT_EQ(s.view_cameras(), spread);  // the session's views are untouched until the click
+  std::printf("[ ahead ] %d views built ahead for camera %d; spares %.1f MB\n", built, cam, s.spare_bytes() / 1e6);
+
+  std::vector<std::string> built_at_click;
+  s.click(c, [&](int, int, const std::string& line) {
+    if (line.find("SAM embedding") != std::string::npos || line.find("adding view") != std::string::npos)
+      built_at_click.push_back(line);
+  });
+  EXPECT_TRUE(built_at_click.empty()) << built_at_click.front();
+  EXPECT_NE(s.view_cameras(), spread);
+  // With a click the views are chosen: nothing more to build ahead.
+  EXPECT_FALSE(s.prefetch_one(cam, nullptr));
+
+  Segmentation t(sam, {}, vo, settings);
+  t.open(scene, scene->gaussians.fingerprint(), nullptr);
+  t.click(c, nullptr);
+  EXPECT_EQ(t.view_cameras(), s.view_cameras());
+  EXPECT_EQ(t.selection(), s.selection());
+  EXPECT_GT(s.selected_count(), 0u);
 }
 
 }  // namespace

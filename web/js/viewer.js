@@ -11,8 +11,8 @@ import { SplatRenderer, lookAt } from './splat_renderer.js';
 const DOUBLE_CLICK_MS = 300;
 
 export class Viewer {
-  constructor({ stage, frame, img, glCanvas, canvas, caption, scene, onClick, onError, onModeChange, onFocus }) {
-    Object.assign(this, { stage, frame, img, glCanvas, canvas, caption, scene, onClick, onError, onModeChange, onFocus });
+  constructor({ stage, frame, img, glCanvas, canvas, caption, scene, onClick, onError, onModeChange, onFocus, onLook }) {
+    Object.assign(this, { stage, frame, img, glCanvas, canvas, caption, scene, onClick, onError, onModeChange, onFocus, onLook });
     this.cameraIndex = 0;
     this.free = false;
     this.fly = false;
@@ -149,7 +149,18 @@ export class Viewer {
   // the same clicked fraction to the same ray).
   clickSpec() { const [w, h] = this.freeSize(this.scene.preview_side); return this.orbit.spec(w, h); }
 
+  // Once the camera has been still a moment: the training camera looked at (the nearest
+  // one to the free camera), so the server can build the views a click there would use.
+  lookedAt() {
+    clearTimeout(this.lookTimer);
+    this.lookTimer = setTimeout(() => {
+      const cam = this.free ? this.nearestCamera() : this.cameraIndex;
+      if (cam !== this.lookSent) { this.lookSent = cam; this.onLook?.(cam); }
+    }, 800);
+  }
+
   render(quality = 'preview') {
+    this.lookedAt();
     if (this.usesGl()) { this.renderGl(); return; }
     this.queued = this.request(quality);
     if (!this.inFlight) this.pump();
