@@ -67,13 +67,17 @@ void SegmentationJobs::stop_building_ahead() {
 
 void SegmentationJobs::build_ahead_loop() {
   std::unique_lock<std::mutex> lock(ahead_mu_);
-  int built = 0;
+  int built = 0, built_for = -1;  // views built for camera built_for since t0
   auto t0 = std::chrono::steady_clock::now();
   for (;;) {
     ahead_cv_.wait(lock, [&] { return ahead_stop_ || !ahead_done_; });
     if (ahead_stop_) return;
     const int camera = focus_;
-    if (built == 0) t0 = std::chrono::steady_clock::now();
+    if (camera != built_for || built == 0) {
+      built = 0;
+      built_for = camera;
+      t0 = std::chrono::steady_clock::now();
+    }
     lock.unlock();
     // The user's work first: wait while a job runs or is queued.
     if (jobs_.busy()) {

@@ -168,69 +168,78 @@ TEST(Segmentation, KeptSegmentationsStayWithinTheirMemoryBudget) {
   EXPECT_GT(s.selected_count(), 0u);
 }
 
+// 12 orbit cameras and "auto:4" views: more cameras than views, so the first click of a
+// segmentation chooses them.
+struct AutoViews {
+  DemoScene demo = small_demo(12);
+  segment::ViewOptions views = small_views();
+  std::shared_ptr<SceneBundle> scene = std::make_shared<SceneBundle>(demo.bundle);
+
+  // A segmentation of the scene, open, with `spec` views.
+  std::unique_ptr<Segmentation> open(std::shared_ptr<const models::SamModel> sam, const std::string& spec = "auto:4") const {
+    SegmentSettings settings;
+    settings.views_spec = spec;
+    auto s = std::make_unique<Segmentation>(std::move(sam), segment::SessionOptions{}, views, settings);
+    s->open(scene, scene->gaussians.fingerprint(), nullptr);
+    return s;
+  }
+};
+
 TEST(Segmentation, AutoViewsAreChosenAroundTheFirstClick) {
   const auto sam = test_sam();
   if (!sam) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
-  const DemoScene d = small_demo(12);
-  const segment::ViewOptions vo = small_views();
-  SegmentSettings settings;
-  settings.views_spec = "auto:4";
-  auto scene = std::make_shared<SceneBundle>(d.bundle);
+  const AutoViews a;
   int cam = 0;
   double x = 0, y = 0;
-  ASSERT_TRUE(demo_click(d, 0, cam, x, y));
+  ASSERT_TRUE(demo_click(a.demo, 0, cam, x, y));
   ClickRecord c;
   c.camera_index = cam;
   c.click = pixel_centre_click(x, y, 1);
 
-  Segmentation s(sam, {}, vo, settings);
-  s.open(scene, scene->gaussians.fingerprint(), nullptr);
-  const std::vector<int> spread = s.view_cameras();
+  const std::unique_ptr<Segmentation> s = a.open(sam);
+  const std::vector<int> spread = s->view_cameras();
   EXPECT_EQ(spread.size(), 4u);
-  s.click(c, nullptr);
-  const std::vector<int> around = s.view_cameras();
+  s->click(c, nullptr);
+  const std::vector<int> around = s->view_cameras();
   std::printf("[ auto ] spread views %d %d %d %d; around the click in camera %d: %d %d %d %d\n", spread[0], spread[1],
               spread[2], spread[3], cam, around[0], around[1], around[2], around[3]);
   ASSERT_EQ(around.size(), 4u);
   EXPECT_NE(std::find(around.begin(), around.end(), cam), around.end());
   EXPECT_NE(around, spread);
-  EXPECT_GT(s.selected_count(), 0u);
+  EXPECT_GT(s->selected_count(), 0u);
   // The spread views no longer used wait as spares, within the budget.
-  EXPECT_GT(s.spare_bytes(), 0u);
-  s.set_kept_budget(0);
-  EXPECT_EQ(s.spare_bytes(), 0u);
+  EXPECT_GT(s->spare_bytes(), 0u);
+  s->set_kept_budget(0);
+  EXPECT_EQ(s->spare_bytes(), 0u);
   // The same selection as a segmentation given those cameras from the start.
-  SegmentSettings listed = settings;
-  listed.views_spec.clear();
-  for (int v : around) listed.views_spec += (listed.views_spec.empty() ? "" : ",") + std::to_string(v);
-  Segmentation t(sam, {}, vo, listed);
-  t.open(scene, scene->gaussians.fingerprint(), nullptr);
-  t.click(c, nullptr);
-  EXPECT_EQ(t.view_cameras(), around);
-  EXPECT_EQ(s.selection(), t.selection());
+  std::string listed;
+  for (int v : around) listed += (listed.empty() ? "" : ",") + std::to_string(v);
+  const std::unique_ptr<Segmentation> t = a.open(sam, listed);
+  t->click(c, nullptr);
+  EXPECT_EQ(t->view_cameras(), around);
+  EXPECT_EQ(s->selection(), t->selection());
   // A second click keeps the views (the segmentation has its target).
   ClickRecord again = c;
   again.click.x += 1;
-  s.click(again, nullptr);
-  EXPECT_EQ(s.view_cameras(), around);
+  s->click(again, nullptr);
+  EXPECT_EQ(s->view_cameras(), around);
   // A click in a free camera (placed where that camera is) chooses the same views around
   // the clicked point and keeps its own view after them.
-  Segmentation f(sam, {}, vo, settings);
-  f.open(scene, scene->gaussians.fingerprint(), nullptr);
+  const std::unique_ptr<Segmentation> f = a.open(sam);
   ClickRecord free_click = c;
   free_click.camera_index = -1;
-  free_click.free_camera = d.bundle.cameras[size_t(cam)];
-  f.click(free_click, nullptr);
-  std::vector<int> with_free = f.view_cameras();
+  free_click.free_camera = a.demo.bundle.cameras[size_t(cam)];
+  f->click(free_click, nullptr);
+  std::vector<int> with_free = f->view_cameras();
   ASSERT_EQ(with_free.size(), 5u);
   EXPECT_EQ(with_free.back(), -1);
   with_free.pop_back();
   EXPECT_EQ(with_free, around);
-  EXPECT_GT(f.selected_count(), 0u);
+  EXPECT_GT(f->selected_count(), 0u);
   // Its second click reuses its view.
   free_click.click.x += 1;
-  f.click(free_click, nullptr);
-  EXPECT_EQ(f.view_cameras().size(), 5u);
+  f->click(free_click, nullptr);
+  EXPECT_EQ(f->view_cameras().size(), 5u);
 }
 
 // The views a click in a looked-at camera would use, built ahead while the user looks,
@@ -238,51 +247,45 @@ TEST(Segmentation, AutoViewsAreChosenAroundTheFirstClick) {
 TEST(Segmentation, ViewsBuiltAheadForALookedAtCameraServeItsFirstClick) {
   const auto sam = test_sam();
   if (!sam) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
-  const DemoScene d = small_demo(12);
-  const segment::ViewOptions vo = small_views();
-  SegmentSettings settings;
-  settings.views_spec = "auto:4";
-  auto scene = std::make_shared<SceneBundle>(d.bundle);
+  const AutoViews a;
   // A camera that is not one of the spread views, clicked at its image centre (what
   // building ahead takes as the click).
-  Segmentation s(sam, {}, vo, settings);
-  s.open(scene, scene->gaussians.fingerprint(), nullptr);
-  const std::vector<int> spread = s.view_cameras();
+  const std::unique_ptr<Segmentation> s = a.open(sam);
+  const std::vector<int> spread = s->view_cameras();
   int cam = 0;
   while (std::find(spread.begin(), spread.end(), cam) != spread.end()) ++cam;
-  const Camera& full = d.bundle.cameras[size_t(cam)];
+  const Camera& full = a.demo.bundle.cameras[size_t(cam)];
   ClickRecord c;
   c.camera_index = cam;
   c.click = {full.cx, full.cy, 1};
 
   // No room in the budget: nothing is built.
-  s.set_kept_budget(0);
-  EXPECT_FALSE(s.prefetch_one(cam, nullptr));
-  EXPECT_FALSE(s.has_view_of(cam));
-  s.set_kept_budget(size_t(1) << 30);
+  s->set_kept_budget(0);
+  EXPECT_FALSE(s->prefetch_one(cam, nullptr));
+  EXPECT_FALSE(s->has_view_of(cam));
+  s->set_kept_budget(size_t(1) << 30);
   int built = 0;
-  while (s.prefetch_one(cam, nullptr)) ++built;
-  EXPECT_TRUE(s.has_view_of(cam));
+  while (s->prefetch_one(cam, nullptr)) ++built;
+  EXPECT_TRUE(s->has_view_of(cam));
   EXPECT_GE(built, 1);
-  EXPECT_EQ(s.view_cameras(), spread);  // the session's views are untouched until the click
-  std::printf("[ ahead ] %d views built ahead for camera %d; spares %.1f MB\n", built, cam, s.spare_bytes() / 1e6);
+  EXPECT_EQ(s->view_cameras(), spread);  // the session's views are untouched until the click
+  std::printf("[ ahead ] %d views built ahead for camera %d; spares %.1f MB\n", built, cam, s->spare_bytes() / 1e6);
 
   std::vector<std::string> built_at_click;
-  s.click(c, [&](int, int, const std::string& line) {
+  s->click(c, [&](int, int, const std::string& line) {
     if (line.find("SAM embedding") != std::string::npos || line.find("adding view") != std::string::npos)
       built_at_click.push_back(line);
   });
   EXPECT_TRUE(built_at_click.empty()) << built_at_click.front();
-  EXPECT_NE(s.view_cameras(), spread);
+  EXPECT_NE(s->view_cameras(), spread);
   // With a click the views are chosen: nothing more to build ahead.
-  EXPECT_FALSE(s.prefetch_one(cam, nullptr));
+  EXPECT_FALSE(s->prefetch_one(cam, nullptr));
 
-  Segmentation t(sam, {}, vo, settings);
-  t.open(scene, scene->gaussians.fingerprint(), nullptr);
-  t.click(c, nullptr);
-  EXPECT_EQ(t.view_cameras(), s.view_cameras());
-  EXPECT_EQ(t.selection(), s.selection());
-  EXPECT_GT(s.selected_count(), 0u);
+  const std::unique_ptr<Segmentation> t = a.open(sam);
+  t->click(c, nullptr);
+  EXPECT_EQ(t->view_cameras(), s->view_cameras());
+  EXPECT_EQ(t->selection(), s->selection());
+  EXPECT_GT(s->selected_count(), 0u);
 }
 
 }  // namespace
