@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <utility>
 
 #include "app/scene_builder.h"
 #include "core/error.h"
@@ -62,6 +64,25 @@ void box(SceneBuilder& b, const Vec3& c, double h, double hz, int n, double size
   }
 }
 
+// What each scene's builder starts from: the named scene (SH degree 3), its random stream
+// and a builder of labelled Gaussians into it. Built in place (its members refer to each
+// other); `auto& [s, demo, g, rng, b] = start;` names the parts, and a builder returns
+// std::move(s) (a structured binding is not moved from implicitly).
+struct SceneStart {
+  EvalScene s;
+  DemoScene& demo;
+  GaussianScene& g;
+  SplitMix64 rng;
+  SceneBuilder b;
+  SceneStart(const std::string& name, uint64_t seed)
+      : demo(s.scene), g(s.scene.bundle.gaussians), rng(seed), b{g, demo.labels, rng, 3} {
+    s.name = name;
+    g.sh_degree = 3;
+  }
+  SceneStart(const SceneStart&) = delete;
+  SceneStart& operator=(const SceneStart&) = delete;
+};
+
 Camera named(Camera cam, int id, const char* prefix) {
   cam.id = id;
   char name[32];
@@ -76,7 +97,9 @@ void add_task(EvalScene& s, const std::string& object, const std::string& kind, 
   t.name = s.name + "/" + object;
   t.kind = kind;
   t.object = label;
-  if (!find_click(s.scene, label, anchor, first_camera, search_px, t.camera, t.x, t.y))
+  // The radius is for 480 pixels across: the same part of the view at any resolution.
+  const double scale = s.scene.bundle.cameras.empty() ? 1.0 : s.scene.bundle.cameras[0].width / 480.0;
+  if (!find_click(s.scene, label, anchor, first_camera, search_px * scale, t.camera, t.x, t.y))
     throw Error("evaluation set: no camera shows " + t.name);
   s.tasks.push_back(t);
 }
@@ -84,13 +107,8 @@ void add_task(EvalScene& s, const std::string& object, const std::string& kind, 
 // Forward-facing capture of a garden wall: a bush with gaps in front of a brick wall, its
 // pot, a trellis with a vase behind it.
 EvalScene garden(const EvalSetOptions& opt) {
-  EvalScene s;
-  s.name = "garden";
-  DemoScene& demo = s.scene;
-  GaussianScene& g = demo.bundle.gaussians;
-  g.sh_degree = 3;
-  SplitMix64 rng(11);
-  SceneBuilder b{g, demo.labels, rng, 3};
+  SceneStart start("garden", 11);
+  auto& [s, demo, g, rng, b] = start;
   const double d = opt.density, sz = 1 / std::sqrt(d);
   const double wall_y = 2.9;
   for (int i = 0, n = int(9000 * d); i < n; ++i) {  // brick wall
@@ -161,7 +179,7 @@ EvalScene garden(const EvalSetOptions& opt) {
   add_task(s, "pot", "compact object below foliage", pot, {-1.0, 1.4 - 0.2, 0.25}, 9);
   add_task(s, "trellis", "thin lattice with gaps", trellis, {0.35 + 3 * 0.3, trellis_y, 0.35 + 3 * 0.3}, 6);
   add_task(s, "vase", "object seen through gaps", vase, vase_c + Vec3{0, -0.24, 0.45}, 10, 20);
-  return s;
+  return std::move(s);
 }
 
 // Forward-facing capture where the background is close behind what is clicked: a shrub
@@ -169,13 +187,8 @@ EvalScene garden(const EvalSetOptions& opt) {
 // screen just in front of the same wall, a hoop lying on the floor (the floor shows in its
 // hole). No empty depth range separates these objects from what their gaps show.
 EvalScene alcove(const EvalSetOptions& opt) {
-  EvalScene s;
-  s.name = "alcove";
-  DemoScene& demo = s.scene;
-  GaussianScene& g = demo.bundle.gaussians;
-  g.sh_degree = 3;
-  SplitMix64 rng(29);
-  SceneBuilder b{g, demo.labels, rng, 3};
+  SceneStart start("alcove", 29);
+  auto& [s, demo, g, rng, b] = start;
   const double d = opt.density, sz = 1 / std::sqrt(d);
   const double wall_y = 1.6;
   for (int i = 0, n = int(8000 * d); i < n; ++i) {  // plastered wall with faint panels
@@ -238,19 +251,14 @@ EvalScene alcove(const EvalSetOptions& opt) {
   add_task(s, "shrub", "gaps in front of a near background", shrub, shrub_c + Vec3{0.05, -0.3, 0.05}, 5);
   add_task(s, "screen", "slats just in front of a wall", screen, {0.45 + 2 * 0.17, screen_y, 1.1}, 6);
   add_task(s, "hoop", "ring lying on the floor", hoop, hoop_c + Vec3{0, -0.26, 0.04}, 9);
-  return s;
+  return std::move(s);
 }
 
 // An orbit capture of a courtyard: a crate behind a post, a thin pillar taller than the
 // frame, a tiny die, a lamp of three parts. `coarse` makes it of fewer, larger Gaussians.
 EvalScene courtyard(const EvalSetOptions& opt, bool coarse) {
-  EvalScene s;
-  s.name = coarse ? "courtyard_coarse" : "courtyard";
-  DemoScene& demo = s.scene;
-  GaussianScene& g = demo.bundle.gaussians;
-  g.sh_degree = 3;
-  SplitMix64 rng(coarse ? 23 : 17);
-  SceneBuilder b{g, demo.labels, rng, 3};
+  SceneStart start(coarse ? "courtyard_coarse" : "courtyard", coarse ? 23 : 17);
+  auto& [s, demo, g, rng, b] = start;
   const double d = opt.density * (coarse ? 0.2 : 1.0), sz = 1 / std::sqrt(opt.density);
   b.size_scale = coarse ? 2.2 : 1.0;
   for (int i = 0, n = int(9000 * d); i < n; ++i) {
@@ -285,7 +293,7 @@ EvalScene courtyard(const EvalSetOptions& opt, bool coarse) {
   add_task(s, "pillar", "thin object leaving the frame", pillar, {-1.7 + 0.06, 1.4, 2.3}, 0);
   add_task(s, "die", "tiny object", die, {-0.3, -1.25, 0.05}, 18);
   add_task(s, "lamp", "compound object", lamp, lamp_c + Vec3{0, -0.25, 1.0}, 20);
-  return s;
+  return std::move(s);
 }
 
 // A patio seen from a half orbit in front of a house wall, built after the other scenes'
@@ -293,13 +301,8 @@ EvalScene courtyard(const EvalSetOptions& opt, bool coarse) {
 // back, a picket fence with a ball behind it, a potted plant (the truth: plant and pot), a
 // thin pole taller than the frame, a round table with a cup standing on it.
 EvalScene patio(const EvalSetOptions& opt) {
-  EvalScene s;
-  s.name = "patio";
-  DemoScene& demo = s.scene;
-  GaussianScene& g = demo.bundle.gaussians;
-  g.sh_degree = 3;
-  SplitMix64 rng(29);
-  SceneBuilder b{g, demo.labels, rng, 3};
+  SceneStart start("patio", 29);
+  auto& [s, demo, g, rng, b] = start;
   const double d = opt.density, sz = 1 / std::sqrt(d);
   const double wall_y = 2.6;
   for (int i = 0, n = int(8000 * d); i < n; ++i) {  // rendered house wall with panels
@@ -393,7 +396,7 @@ EvalScene patio(const EvalSetOptions& opt) {
   add_task(s, "pole", "thin pole taller than the frame", pole, {2.6, 2.0 - 0.04, 2.3}, 6);
   add_task(s, "cup", "tiny object on a table", cup, cup_c + Vec3{0, -0.045, 0.05}, 14);
   add_task(s, "table", "compound object with a smaller one on it", table, table_c + Vec3{0, -0.36, 0.68}, 3);
-  return s;
+  return std::move(s);
 }
 
 // Forward-facing handheld capture of a study, as LLFF scenes are taken (a 5 x 4 grid of
@@ -401,13 +404,8 @@ EvalScene patio(const EvalSetOptions& opt) {
 // side by side, a mug with a handle on a desk, a hanging plant in front of a window whose
 // far view shows through its leaves, and a floor lamp (thin stem, shade) at the frame's edge.
 EvalScene study(const EvalSetOptions& opt) {
-  EvalScene s;
-  s.name = "study";
-  DemoScene& demo = s.scene;
-  GaussianScene& g = demo.bundle.gaussians;
-  g.sh_degree = 3;
-  SplitMix64 rng(41);
-  SceneBuilder b{g, demo.labels, rng, 3};
+  SceneStart start("study", 41);
+  auto& [s, demo, g, rng, b] = start;
   const double d = opt.density, sz = 1 / std::sqrt(d);
   const double wall_y = 2.4;
   const double win_x0 = 0.7, win_x1 = 1.7, win_z0 = 1.0, win_z1 = 2.0;
@@ -515,7 +513,7 @@ EvalScene study(const EvalSetOptions& opt) {
   add_task(s, "mug", "small object with a handle", mug, mug_c + Vec3{0, -0.04, 0.05}, 2);
   add_task(s, "hanging_plant", "sparse leaves in front of a window", hanging, hang_c + Vec3{0, -0.12, 0.08}, 17);
   add_task(s, "floor_lamp", "thin stem under a shade at the frame edge", lamp, lamp_c + Vec3{0, -0.2, 1.55}, 9);
-  return s;
+  return std::move(s);
 }
 
 // A kitchen counter filmed on a handheld arc in front of it (cameras at two heights, some
@@ -524,13 +522,8 @@ EvalScene study(const EvalSetOptions& opt) {
 // show the tiles and the counter, a kettle with a handle and a spout, a salt shaker (tiny),
 // and a ladle hanging 2 cm in front of the tiles near the frame's edge.
 EvalScene kitchen(const EvalSetOptions& opt) {
-  EvalScene s;
-  s.name = "kitchen";
-  DemoScene& demo = s.scene;
-  GaussianScene& g = demo.bundle.gaussians;
-  g.sh_degree = 3;
-  SplitMix64 rng(57);
-  SceneBuilder b{g, demo.labels, rng, 3};
+  SceneStart start("kitchen", 57);
+  auto& [s, demo, g, rng, b] = start;
   const double d = opt.density, sz = 1 / std::sqrt(d);
   const double wall_y = 0.6, top = 0.9;
   for (int i = 0, n = int(13000 * d); i < n; ++i) {  // tiled backsplash: 10 cm tiles, grey grout
@@ -622,7 +615,7 @@ EvalScene kitchen(const EvalSetOptions& opt) {
   add_task(s, "kettle", "kettle with a handle and a spout", kettle, kettle_c + Vec3{0, -0.09, 0.08}, 8);
   add_task(s, "salt", "tiny object", salt, salt_c + Vec3{0, -0.018, 0.025}, 14);
   add_task(s, "ladle", "thin hanging object close to the wall near the frame edge", ladle, ladle_c + Vec3{0, -0.05, 0.05}, 2);
-  return s;
+  return std::move(s);
 }
 
 // A tube along a segment: `n` flat Gaussians on its surface, the radius going from r0 to r1.
@@ -645,13 +638,8 @@ void tube(SceneBuilder& b, const Vec3& p0, const Vec3& p1, double r0, double r1,
 // in front of a large-leaved plant (orchids), and a skull mounted on the wall with long horns reaching towards the cameras
 // (horns).
 EvalScene museum(const EvalSetOptions& opt) {
-  EvalScene s;
-  s.name = "museum";
-  DemoScene& demo = s.scene;
-  GaussianScene& g = demo.bundle.gaussians;
-  g.sh_degree = 3;
-  SplitMix64 rng(73);
-  SceneBuilder b{g, demo.labels, rng, 3};
+  SceneStart start("museum", 73);
+  auto& [s, demo, g, rng, b] = start;
   const double d = opt.density, sz = 1 / std::sqrt(d);
   const double wall_y = 1.6;
   for (int i = 0, n = int(11000 * d); i < n; ++i) {  // plastered wall with a dado rail
@@ -774,7 +762,7 @@ EvalScene museum(const EvalSetOptions& opt) {
            7);
   add_task(s, "orchid", "a flower spike on a thin stem beside another, before foliage", orchid, p_orchid_anchor, 12, 20);
   add_task(s, "horns", "mounted skull with long horns reaching out (NVOS horns)", horns, skull_c + Vec3{0, -0.07, 0}, 2);
-  return s;
+  return std::move(s);
 }
 
 // A living room on a half orbit, built after the museum as a further check on objects
@@ -782,13 +770,8 @@ EvalScene museum(const EvalSetOptions& opt) {
 // that show the wall through them), a rug lying flat on the floor, a dark television on a
 // low cabinet, and a vase of flowers on a coffee table.
 EvalScene lounge(const EvalSetOptions& opt) {
-  EvalScene s;
-  s.name = "lounge";
-  DemoScene& demo = s.scene;
-  GaussianScene& g = demo.bundle.gaussians;
-  g.sh_degree = 3;
-  SplitMix64 rng(91);
-  SceneBuilder b{g, demo.labels, rng, 3};
+  SceneStart start("lounge", 91);
+  auto& [s, demo, g, rng, b] = start;
   const double d = opt.density, sz = 1 / std::sqrt(d);
   const double wall_y = 2.2;
   for (int i = 0, n = int(10000 * d); i < n; ++i) {  // painted wall with a skirting board
@@ -884,7 +867,7 @@ EvalScene lounge(const EvalSetOptions& opt) {
   add_task(s, "rug", "a flat rug lying on the floor, partly under a table", rug, rug_c + Vec3{-0.6, -0.3, 0.0}, 16);
   add_task(s, "television", "a dark screen on a cabinet against the wall", tv, tv_c + Vec3{0, -0.04, 0.35}, 8);
   add_task(s, "vase", "a vase of flowers on a table", vase, vase_c + Vec3{0, -0.07, 0.1}, 13);
-  return s;
+  return std::move(s);
 }
 
 EvalScene orbit_demo(const EvalSetOptions& opt) {
