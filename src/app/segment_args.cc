@@ -35,7 +35,8 @@ const char* const kSegmentOptionsHelp =
     "                                whole around it\n"
 
     "  --no-object-prior             keep SAM's choice in the clicked view even when it runs past three\n"
-    "                                image borders and a candidate inside the frame holds the click\n"
+    "                                image borders (or two, over 30 % of the image) and a candidate\n"
+    "                                inside the frame holds the click\n"
     "  --no-whole-neutral            let a view whose mask is a part of a larger candidate vote against\n"
     "                                the rest of that candidate (the vote keeps the intersection)\n"
     "  --selection-prompts N         rounds prompting views no click reached (default 2, 0 = off)\n"

@@ -75,15 +75,24 @@ int borders_reached(const Image& m) {
   return int(top) + int(bottom) + int(left) + int(right);
 }
 
+// A mask that looks like the surroundings rather than an object: it runs past three or four
+// image borders, or past two while covering `min_share` of the image (a floor whose far edge
+// is in view).
+bool surroundings(const Image& m, double min_share) {
+  const int borders = borders_reached(m);
+  return borders >= 3 || (borders == 2 && double(mask_area(m)) >= min_share * double(m.data.size()));
+}
+
 // A clicked view's candidate (the user's view, or one a click was propagated to). SAM's own
-// choice, unless it runs past the frame on three or four sides (the wall or floor around the
-// click: a pale skull on a pale wall) while another candidate holding every positive click
-// stays off all borders but one (an object the click picks out); then the largest such
+// choice, unless it looks like the surroundings (the wall or floor around the click: a pale
+// skull on a pale wall, a rug on the floor) while another candidate holding every positive
+// click stays off all borders but one (an object the click picks out); then the largest such
 // candidate. A click that means the surroundings still gets them from a second view or
 // click; one that means the object gets it at once.
-int object_candidate(const models::SegmentResult& r, const std::vector<Click>& clicks, double min_score) {
+int object_candidate(const models::SegmentResult& r, const std::vector<Click>& clicks, double min_score,
+                     double min_surroundings_share) {
   const bool positive = std::any_of(clicks.begin(), clicks.end(), [](const Click& k) { return k.label == 1; });
-  if (!positive || r.candidates.size() < 2 || borders_reached(r.candidates[size_t(r.mask_index)]) < 3)
+  if (!positive || r.candidates.size() < 2 || !surroundings(r.candidates[size_t(r.mask_index)], min_surroundings_share))
     return r.mask_index;
   int best = r.mask_index;
   size_t best_area = 0;
@@ -620,7 +629,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   size_t first_view = 0;
   // SAM's choice in a clicked view, or the object candidate the prior prefers to it.
   auto clicked_candidate = [&](const models::SegmentResult& r, const ViewState& vs) {
-    return o.object_prior ? object_candidate(r, vs.clicks, o.min_object_score) : r.mask_index;
+    return o.object_prior ? object_candidate(r, vs.clicks, o.min_object_score, o.min_surroundings_share) : r.mask_index;
   };
   auto inspect_and_vote = [&](int forced_first) {
     fresh = unjudged;
@@ -716,7 +725,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       for (size_t c = 0; c < r.candidates.size(); ++c) {
         if (int(c) == used || r.candidate_scores[c] < o.min_granularity_score ||
             double(mask_area(r.candidates[c])) < o.granularity_growth * double(used_area) ||
-            (o.object_prior && borders_reached(r.candidates[c]) >= 3))
+            (o.object_prior && surroundings(r.candidates[c], o.min_surroundings_share)))
           continue;
         inspect_and_vote(int(c));
         last = int(c);

@@ -69,10 +69,12 @@ struct SessionOptions {
   // rendered selection and be covered this much by it (or reach min_prompt_iou).
   double min_prompt_inside = 0.7, min_prompt_on_selection = 0.3, min_prompt_iou = 0.5;
   // In a view with clicks, a candidate that stays inside the frame (an object) and holds
-  // them is taken over SAM's choice when that runs past three or four image borders (the
-  // surroundings), and granularity consensus does not grow into such a candidate.
+  // them is taken over SAM's choice when that looks like the surroundings: it runs past three
+  // or four image borders, or past two while covering min_surroundings_share of the image (a
+  // floor seen from above its far edge); granularity consensus does not grow into such a candidate.
   bool object_prior = true;
   double min_object_score = 0.75;  // SAM's predicted IoU the object candidate needs
+  double min_surroundings_share = 0.3;
   // Negative clicks cut what SAM segments at them from the mask, instead of being given
   // to SAM as negative points (which reshapes the whole mask unpredictably).
   bool negative_regions = true;
