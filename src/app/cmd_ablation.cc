@@ -82,6 +82,7 @@ int run_eval_ablation(const Args& args) {
       {"- depth-consistent clicks", [](segment::SessionOptions& o) { o.propagation.depth_agreement = 0; }},
       {"- background plane", [](segment::SessionOptions& o) { o.background_options.plane = false; }},
       {"- object prior", [](segment::SessionOptions& o) { o.object_prior = false; }},
+      {"- background votes against", [](segment::SessionOptions& o) { o.background_against = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

@@ -23,6 +23,8 @@ const char* const kSegmentOptionsHelp =
     "  --no-depth-extents            depth layers from Gaussian centres only (not their depth extents)\n"
     "  --no-background-gate          let a mask vote for the surface that continues from around it (the\n"
     "                                floor inside a ring, a wall just behind a plant)\n"
+    "  --background-neutral          what the background gate finds in a clicked view counts neither\n"
+    "                                way (default: against the target)\n"
     "  --no-background-plane         the background gate only where lines across the mask meet the\n"
     "                                surroundings on both sides (not the plane they lie on elsewhere)\n"
     "  --no-see-through              segment what a click sees through gaps as the render shows it\n"
@@ -57,7 +59,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "no-background-plane",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane",
                                           "candidate-choice", "no-granularity-consensus", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement",
                                           "sam-negatives"};
   return f;
@@ -87,6 +89,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   if (args.has("no-depth-extents")) s.session.layer_options.extent_sigmas = 0;
   s.session.background_gate = !args.has("no-background-gate");
   s.session.background_options.plane = !args.has("no-background-plane");
+  s.session.background_against = !args.has("background-neutral");
   s.session.see_through = !args.has("no-see-through");
   s.session.agreement_inspection = !args.has("overlap-inspection");
   s.session.choose_candidate = args.has("candidate-choice");

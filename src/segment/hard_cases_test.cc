@@ -238,5 +238,21 @@ TEST(HardCases, ARugOnTheFloorIsSelectedAtTwiceTheResolution) {
   EXPECT_LT(ours.scenery, without.scenery / 10);
 }
 
+TEST(HardCases, TheWallThroughABicyclesSpokesIsNotSelected) {
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // Every view masks the wheels as disks. Where the gate estimates the wall 8 cm behind the
+  // spokes it votes against it; left neutral, the views at the frame's edge (no estimate)
+  // selected that wall on their own.
+  const Outcome ours = run("lounge/bicycle", SessionOptions(), {}, kAblation);
+  SessionOptions neutral;
+  neutral.background_against = false;
+  const Outcome without = run("lounge/bicycle", neutral, {}, kAblation);
+  std::printf("[ hard ] lounge/bicycle: IoU %.1f%% (%zu selected, %zu wall or floor); background neutral %.1f%% (%zu, %zu)\n",
+              100 * ours.iou, ours.selected, ours.scenery, 100 * without.iou, without.selected, without.scenery);
+  EXPECT_GT(ours.iou, 0.75);
+  EXPECT_GT(ours.iou, without.iou + 0.1);
+  EXPECT_LT(ours.scenery, without.scenery / 2);
+}
+
 }  // namespace
 }  // namespace isegman::segment

@@ -35,7 +35,7 @@ std::string describe(const VotingParts& p) {
 
 SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
-  o.granularity_consensus = o.whole_neutral = o.object_prior = false;
+  o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
   o.propagation.hidden_fallback = true;
@@ -563,8 +563,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
       const Image bg = background_inverse_depth(mask, view.depth, view.alpha,
                                                 near * (1 - o.background_options.occluder_margin), o.background_options,
                                                 o.threads);
-      vs.background_gaussians = gate_background(scene_, view.camera, bg, target, vs.positive, vs.neutral, o.background_options,
-                                                o.threads);
+      ViewVotes against;  // left out of the neutral weights: they count in the view's total
+      const bool votes_against = o.background_against && !target.seeds.empty();
+      vs.background_gaussians = gate_background(scene_, view.camera, bg, target, vs.positive,
+                                                votes_against ? against : vs.neutral, o.background_options, o.threads);
     }
     vs.whole_pixels = 0;
     ViewVotes whole;

@@ -36,6 +36,12 @@ struct SessionOptions {
   // Make neutral what lies on the surface continuing from around the mask (the floor inside
   // a ring, a wall just behind a plant): background_gate.h.
   bool background_gate = true;
+  // In a view with clicks the gate knows the target by the Gaussians at the clicks: what it
+  // finds there on the surroundings' surface (the wall seen through a bicycle's spokes, a
+  // screen's slats, a basket's wires) votes against, rather than neither way, so the views at
+  // the frame's edge, where the gate has no estimate, cannot select it alone. Views without a
+  // click (prompted from the selection) leave it neutral.
+  bool background_against = true;
   BackgroundOptions background_options;
   // IIM by agreement: a mask must hold most of the selection rendered in its view and be
   // partly covered by it (both directions), instead of merely touching it.
