@@ -198,17 +198,22 @@ TEST(HardCases, AClickOnAThinPoleStaysOnItWhereTheDepthAgrees) {
   EXPECT_GT(ours.iou, 0.85);
 }
 
-// A task with the object prior and with SAM's own choice; prints both.
-std::pair<Outcome, Outcome> with_and_without_object_prior(const std::string& name, int width = kAblation) {
+// A task with the default options and with `without` (named `what`); prints both.
+std::pair<Outcome, Outcome> with_and_without(const std::string& name, const SessionOptions& without_options,
+                                             const char* what, int width = kAblation) {
   Outcome ours = run(name, SessionOptions(), {}, width);
+  Outcome without = run(name, without_options, {}, width);
+  std::printf("[ hard ] %s at %d px: IoU %.1f%% (%zu selected, %zu of them wall or floor); %s %.1f%% (%zu selected, "
+              "%zu wall or floor)\n",
+              name.c_str(), width, 100 * ours.iou, ours.selected, ours.scenery, what, 100 * without.iou,
+              without.selected, without.scenery);
+  return {std::move(ours), std::move(without)};
+}
+
+std::pair<Outcome, Outcome> with_and_without_object_prior(const std::string& name, int width = kAblation) {
   SessionOptions sams_choice;
   sams_choice.object_prior = false;
-  Outcome without = run(name, sams_choice, {}, width);
-  std::printf("[ hard ] %s at %d px: IoU %.1f%% (%zu selected, %zu of them wall or floor); SAM's choice %.1f%% (%zu selected, "
-              "%zu wall or floor)\n",
-              name.c_str(), width, 100 * ours.iou, ours.selected, ours.scenery, 100 * without.iou, without.selected,
-              without.scenery);
-  return {std::move(ours), std::move(without)};
+  return with_and_without(name, sams_choice, "SAM's choice", width);
 }
 
 TEST(HardCases, AClickOnAPaleSkullOnAPaleWallSelectsTheSkullNotTheWall) {
@@ -246,12 +251,9 @@ TEST(HardCases, TheWallThroughABicyclesSpokesIsNotSelected) {
   // Every view masks the wheels as disks. Where the gate estimates the wall 8 cm behind the
   // spokes it votes against it; left neutral, the views at the frame's edge (no estimate)
   // selected that wall on their own.
-  const Outcome ours = run("lounge/bicycle", SessionOptions(), {}, kAblation);
   SessionOptions neutral;
   neutral.background_against = false;
-  const Outcome without = run("lounge/bicycle", neutral, {}, kAblation);
-  std::printf("[ hard ] lounge/bicycle: IoU %.1f%% (%zu selected, %zu wall or floor); background neutral %.1f%% (%zu, %zu)\n",
-              100 * ours.iou, ours.selected, ours.scenery, 100 * without.iou, without.selected, without.scenery);
+  const auto [ours, without] = with_and_without("lounge/bicycle", neutral, "background neutral");
   EXPECT_GT(ours.iou, 0.75);
   EXPECT_GT(ours.iou, without.iou + 0.1);
   EXPECT_LT(ours.scenery, without.scenery / 2);
