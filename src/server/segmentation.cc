@@ -33,18 +33,15 @@ bool same_camera(const Camera& a, const Camera& b) {
 // distance to the point, then viewing direction, as the page's nearest camera); the
 // nearest of all when none sees it.
 int nearest_camera(const std::vector<Camera>& cameras, const Camera& free, const Vec3& point) {
-  const Vec3 eye = free.center();
-  const Vec3 forward = free.R.transposed() * Vec3{0, 0, 1};
+  const Vec3 eye = free.center(), forward = free.R.row(2);
   const double scale = std::max(norm(point - eye), 1e-9);
+  const std::vector<segment::ViewCandidate> seen = segment::score_views(cameras, -1, point);
   int best = 0, best_seeing = -1;
   double best_score = 1e300, best_seeing_score = 1e300;
   for (size_t i = 0; i < cameras.size(); ++i) {
-    const Camera& c = cameras[i];
-    const double score = norm(c.center() - eye) / scale + (1 - dot(c.R.transposed() * Vec3{0, 0, 1}, forward));
+    const double score = norm(cameras[i].center() - eye) / scale + (1 - dot(cameras[i].R.row(2), forward));
     if (score < best_score) best_score = score, best = int(i);
-    double u = 0, v = 0;
-    const bool sees = c.project(point, u, v) && u >= 0 && u < c.width && v >= 0 && v < c.height;
-    if (sees && score < best_seeing_score) best_seeing_score = score, best_seeing = int(i);
+    if (seen[i].sees && score < best_seeing_score) best_seeing_score = score, best_seeing = int(i);
   }
   return best_seeing >= 0 ? best_seeing : best;
 }
@@ -284,10 +281,14 @@ bool Segmentation::has_view_of(int camera) const {
   return spare_fingerprint_ == fingerprint_ && std::any_of(spare_.begin(), spare_.end(), has);
 }
 
+int Segmentation::chosen_view_count() const {
+  int k = 0;
+  return segment::parse_auto_views(settings_.views_spec, k) && int(snapshot_->cameras.size()) > k ? k : 0;
+}
+
 bool Segmentation::prefetch_one(int camera, const Progress& progress) {
-  int k_views = 0;
-  if (!session_ || !log_.empty() || camera < 0 || camera >= int(snapshot_->cameras.size()) ||
-      !segment::parse_auto_views(settings_.views_spec, k_views) || int(snapshot_->cameras.size()) <= k_views)
+  const int k_views = chosen_view_count();
+  if (!session_ || !log_.empty() || camera < 0 || camera >= int(snapshot_->cameras.size()) || k_views == 0)
     return false;
   if (spare_fingerprint_ != fingerprint_) spare_.clear();
   spare_fingerprint_ = fingerprint_;
@@ -323,9 +324,8 @@ bool Segmentation::prefetch_one(int camera, const Progress& progress) {
 }
 
 bool Segmentation::choose_views_for(const ClickRecord& c, const Progress& progress) {
-  int k_views = 0;
-  if ((c.camera_index < 0 && !c.free_camera) || hidden_of(c) || !session_->clicks().empty() ||
-      !segment::parse_auto_views(settings_.views_spec, k_views) || int(snapshot_->cameras.size()) <= k_views)
+  const int k_views = chosen_view_count();
+  if ((c.camera_index < 0 && !c.free_camera) || hidden_of(c) || !session_->clicks().empty() || k_views == 0)
     return false;
   const int k = view_for(c, progress);
   const segment::SegmentView& clicked = session_->views()[size_t(k)];

@@ -130,6 +130,9 @@ class Segmentation {
   // chooses them from the training camera nearest it and keeps its own view after them.
   // Built views are reused (the others wait as spares); true when the views changed.
   bool choose_views_for(const ClickRecord& click, const Progress& progress);
+  // K of an "auto" / "auto:K" spec when the scene has more cameras than K (the views are
+  // then chosen per segmentation), else 0.
+  int chosen_view_count() const;
   // The clicked camera rendered without the hidden Gaussians (their opacity zeroed, so the
   // indices stay), added as a view of its own once per camera and hidden set.
   int shown_view_for(const ClickRecord& click, const Progress& progress);
