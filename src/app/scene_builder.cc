@@ -36,12 +36,33 @@ void push(GaussianScene& g, std::vector<int>& labels, SplitMix64& rng, int degre
     }
   labels.push_back(label);
 }
+// The imperfections of SceneBuilder::depth_jitter and shape_jitter: moves p along n,
+// scales the tangent axes and the thickness, tilts q. Draws nothing when both are 0.
+void jitter(SplitMix64& rng, double depth_jitter, double shape_jitter, const Vec3& n, Vec3& p, Quat& q, double& sx,
+            double& sy, double& sz) {
+  if (depth_jitter > 0) p = p + normalized(n) * (std::clamp(rng.normal(), -2.5, 2.5) * depth_jitter);
+  if (shape_jitter > 0) {
+    const double size = std::exp(rng.normal() * shape_jitter), ratio = std::exp(rng.normal() * shape_jitter);
+    sx *= size * ratio;
+    sy *= size / ratio;
+    sz *= size * std::exp(std::abs(rng.normal()) * 2 * shape_jitter);  // some thicker than a flat splat
+    const double tilt = rng.normal() * 0.6 * shape_jitter, axis = rng.range(0, 2 * M_PI);
+    q = q * Quat::from_axis_angle({std::cos(axis), std::sin(axis), 0}, tilt);  // about a local tangent axis
+  }
+}
 }  // namespace
 
 void SceneBuilder::splat(const Vec3& p, const Vec3& n, double size, const Vec3& rgb, int label, double shine) {
   size *= size_scale;
   double sx = size * rng.range(0.8, 1.25), sy = size * rng.range(0.8, 1.25);
   Quat q = align_z_to(n) * Quat::from_axis_angle({0, 0, 1}, rng.range(0, M_PI));
+  if (depth_jitter > 0 || shape_jitter > 0) {
+    Vec3 pj = p;
+    double sz = size * 0.15;
+    jitter(rng, depth_jitter, shape_jitter, n, pj, q, sx, sy, sz);
+    push(g, labels, rng, degree, pj, n, q, sx, sy, sz, rgb, label, shine);
+    return;
+  }
   push(g, labels, rng, degree, p, n, q, sx, sy, size * 0.15, rgb, label, shine);
 }
 
@@ -54,8 +75,26 @@ void SceneBuilder::strip(const Vec3& p, const Vec3& n, const Vec3& along, double
   x = normalized(x);
   const Vec3 y = cross(z, x);
   const Quat q = Quat::from_matrix(Mat3::from_cols(x, y, z));
+  if (depth_jitter > 0 || shape_jitter > 0) {
+    Vec3 pj = p;
+    Quat qj = q;
+    double sx = length * size_scale, sy = width * size_scale, sz = 0.15 * width * size_scale;
+    jitter(rng, depth_jitter, shape_jitter, n, pj, qj, sx, sy, sz);
+    push(g, labels, rng, degree, pj, n, qj, sx, sy, sz, rgb, label, shine);
+    return;
+  }
   push(g, labels, rng, degree, p, n, q, length * size_scale, width * size_scale,
        0.15 * width * size_scale, rgb, label, shine);
+}
+
+void SceneBuilder::floater(const Vec3& p, double size, const Vec3& rgb, double opacity) {
+  const Vec3 n = normalized(Vec3{rng.normal(), rng.normal(), rng.normal() + 1e-9});
+  const Quat q = align_z_to(n);
+  size *= size_scale;
+  push(g, labels, rng, degree, p, n, q, size * rng.range(0.6, 1.6), size * rng.range(0.6, 1.6), size * rng.range(0.3, 1.0),
+       rgb, -1, 0.0);
+  const double a = std::clamp(opacity, 0.01, 0.99);
+  g.opacity.back() = float(std::log(a / (1 - a)));
 }
 
 }  // namespace isegman
