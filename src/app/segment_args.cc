@@ -27,6 +27,9 @@ const char* const kSegmentOptionsHelp =
     "                                way (default: against the target)\n"
     "  --no-background-plane         the background gate only where lines across the mask meet the\n"
     "                                surroundings on both sides (not the plane they lie on elsewhere)\n"
+    "  --rendered-surface            the background gate measures from the rendered surface with a\n"
+    "                                fixed tolerance (default: from where the surroundings' Gaussians\n"
+    "                                lie, as tight as their scatter)\n"
     "  --no-see-through              segment what a click sees through gaps as the render shows it\n"
     "  --no-coherence                select by vote share > tau alone (no nearest-neighbour decision)\n"
     "  --no-centre-rule              no selection of shares in (0.5, tau] by their centres lying in the masks\n"
@@ -59,7 +62,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface",
                                           "candidate-choice", "no-granularity-consensus", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement",
                                           "sam-negatives"};
   return f;
@@ -90,6 +93,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.background_gate = !args.has("no-background-gate");
   s.session.background_options.plane = !args.has("no-background-plane");
   s.session.background_against = !args.has("background-neutral");
+  if (args.has("rendered-surface")) s.session.background_options.spread_scale = 0;
   s.session.see_through = !args.has("no-see-through");
   s.session.agreement_inspection = !args.has("overlap-inspection");
   s.session.choose_candidate = args.has("candidate-choice");

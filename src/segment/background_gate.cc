@@ -323,9 +323,105 @@ Image background_inverse_depth(const Image& mask, const Image& depth, const Imag
   return out;
 }
 
+namespace {
+
+// Pixels within `r` (Chebyshev distance) of a mask pixel, over the box [x0, x1] x [y0, y1]
+// (row-major in it): a separable running maximum.
+std::vector<uint8_t> dilated(const Image& mask, int x0, int y0, int x1, int y1, int r) {
+  const int bw = x1 - x0 + 1, bh = y1 - y0 + 1;
+  std::vector<uint8_t> rows(size_t(bw) * size_t(bh), 0), out(rows.size(), 0);
+  for (int y = 0; y < bh; ++y) {
+    int last = -1 << 20;  // the last mask pixel seen on the row, sweeping right then left
+    for (int x = 0; x < bw; ++x) {
+      if (mask.at(x0 + x, y0 + y) > 0.5f) last = x;
+      rows[size_t(y) * size_t(bw) + size_t(x)] = x - last <= r;
+    }
+    last = 1 << 20;
+    for (int x = bw - 1; x >= 0; --x) {
+      if (mask.at(x0 + x, y0 + y) > 0.5f) last = x;
+      rows[size_t(y) * size_t(bw) + size_t(x)] |= last - x <= r;
+    }
+  }
+  for (int x = 0; x < bw; ++x) {
+    int last = -1 << 20;
+    for (int y = 0; y < bh; ++y) {
+      if (rows[size_t(y) * size_t(bw) + size_t(x)]) last = y;
+      out[size_t(y) * size_t(bw) + size_t(x)] = y - last <= r;
+    }
+    last = 1 << 20;
+    for (int y = bh - 1; y >= 0; --y) {
+      if (rows[size_t(y) * size_t(bw) + size_t(x)]) last = y;
+      out[size_t(y) * size_t(bw) + size_t(x)] |= last - y <= r;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camera& camera, const Image& mask,
+                                         const Image& depth, const Image& alpha, const ViewVotes& total,
+                                         double near_limit, const BackgroundOptions& o, int threads) {
+  const int w = mask.width, h = mask.height;
+  const size_t npx = size_t(w) * size_t(h);
+  if (o.spread_scale <= 0 || w == 0 || h == 0 || depth.data.size() != npx || alpha.data.size() != npx)
+    return {};
+  int bx0 = w, by0 = h, bx1 = -1, by1 = -1;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (mask.at(x, y) > 0.5f) bx0 = std::min(bx0, x), by0 = std::min(by0, y), bx1 = std::max(bx1, x), by1 = std::max(by1, y);
+  if (bx1 < 0) return {};
+  // The ring the line estimates sample: past the `skip` pixels whose depth blends both
+  // sides, out to where a sample's continuation is checked.
+  const int inner = std::max(0, o.skip), outer = inner + 2 * std::max(1, o.extent);
+  const int x0 = std::max(0, bx0 - outer), y0 = std::max(0, by0 - outer);
+  const int x1 = std::min(w - 1, bx1 + outer), y1 = std::min(h - 1, by1 + outer);
+  const int bw = x1 - x0 + 1;
+  const std::vector<uint8_t> near_mask = dilated(mask, x0, y0, x1, y1, inner);
+  const std::vector<uint8_t> ring_reach = dilated(mask, x0, y0, x1, y1, outer);
+  // (offset, weight) of the Gaussians centred on the ring, per chunk, merged in order.
+  const size_t n = total.index.size();
+  const size_t chunks = (n + kListGrain - 1) / kListGrain;
+  std::vector<std::vector<std::pair<double, double>>> found(chunks);
+  parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
+    std::vector<std::pair<double, double>>& out = found[begin / kListGrain];
+    for (size_t k = begin; k < end; ++k) {
+      const uint32_t g = total.index[k];
+      const Vec3 c = camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]});
+      if (c.z <= 0) continue;
+      const double u = camera.fx * c.x / c.z + camera.cx, v = camera.fy * c.y / c.z + camera.cy;
+      if (!(u >= x0 && v >= y0 && u < x1 + 1 && v < y1 + 1)) continue;
+      const int px = int(u), py = int(v);
+      const size_t b = size_t(py - y0) * size_t(bw) + size_t(px - x0);
+      if (near_mask[b] || !ring_reach[b]) continue;
+      const size_t p = size_t(py) * size_t(w) + size_t(px);
+      const double z = depth.data[p];
+      if (!(alpha.data[p] > 0.5f) || !(z > 0) || z < near_limit) continue;
+      out.push_back({z / c.z - 1, double(total.weight[k])});  // (1/c.z) / (1/z) - 1
+    }
+  });
+  std::vector<std::pair<double, double>> all;
+  for (auto& f : found) all.insert(all.end(), f.begin(), f.end());
+  if (int(all.size()) < std::max(1, o.min_spread_samples)) return {};
+  std::sort(all.begin(), all.end());
+  double sum = 0;
+  for (const auto& a : all) sum += a.second;
+  auto quantile = [&](double q) {
+    double run = 0;
+    for (const auto& a : all)
+      if ((run += a.second) >= q * sum) return a.first;
+    return all.back().first;
+  };
+  SurroundingsSurface out;
+  out.offset = quantile(0.5);
+  out.tolerance = std::clamp(o.spread_scale * (quantile(0.75) - quantile(0.25)), std::min(o.min_tolerance, o.tolerance),
+                             o.tolerance);
+  return out;
+}
+
 size_t gate_background(const GaussianScene& scene, const Camera& camera, const Image& background,
                        const BackgroundTarget& target, ViewVotes& positive, ViewVotes& neutral,
-                       const BackgroundOptions& o, int threads) {
+                       const BackgroundOptions& o, int threads, const SurroundingsSurface& surface) {
   // Each Gaussian's centre against the surface estimate at its pixel: its inverse depth
   // relative to the surface's, minus 1 (> 0: in front of it; NaN: no estimate there).
   // Per Gaussian and independent, so in parallel chunks (the two passes below).
@@ -341,7 +437,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
       const double u = camera.fx * c.x / c.z + camera.cx, v = camera.fy * c.y / c.z + camera.cy;
       if (u >= 0 && v >= 0 && u < background.width && v < background.height) {
         const float bg = background.at(int(u), int(v));
-        if (bg > 0) offset[k] = (1.0 / c.z) / bg - 1;
+        if (bg > 0) offset[k] = (1.0 / c.z) / bg - 1 - surface.offset;
         pixel[2 * k] = int32_t(u);
         pixel[2 * k + 1] = int32_t(v);
       }
@@ -359,8 +455,8 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   // ~0.8 % nearer in inverse depth) would count as lying on it: the tolerance shrinks to
   // half the clicked Gaussians' (weighted median) offset, when that is at least min_tolerance
   // (a target lying in the surface, a poster on a wall, is not told from it by depth at all).
-  double tolerance = o.tolerance;
-  if (!seed_offsets.empty() && o.min_tolerance > 0 && o.min_tolerance < o.tolerance) {
+  double tolerance = surface.tolerance >= 0 ? surface.tolerance : o.tolerance;
+  if (!seed_offsets.empty() && o.min_tolerance > 0 && o.min_tolerance < tolerance) {
     std::sort(seed_offsets.begin(), seed_offsets.end());
     double total = 0, run = 0;
     for (const auto& so : seed_offsets) total += so.second;
@@ -370,7 +466,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
         median = so.first;
         break;
       }
-    if (median >= 2 * o.min_tolerance && median <= o.tolerance) tolerance = 0.5 * median;
+    if (median >= 2 * o.min_tolerance && median <= tolerance) tolerance = 0.5 * median;
   }
   std::vector<uint8_t> behind_surface(n, 0);
   parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {

@@ -29,6 +29,15 @@ struct BackgroundOptions {
   // ... unless the clicked Gaussians lie within it, at least twice this far in front: then half
   // their (weighted median) offset (0 or >= tolerance: the fixed tolerance alone)
   double min_tolerance = 0.003;
+  // Offsets are measured from where the surroundings' own Gaussians lie (their weighted
+  // median offset from the rendered surface), and the tolerance follows their scatter
+  // (surroundings_surface): the rendered depth blends nearer Gaussians in and lies ~1 % in
+  // front of a clean wall's centres, so a thin object 2 cm in front of the wall looked on
+  // it; a trained wall's Gaussians scatter about it. The tolerance is spread_scale x their
+  // interquartile range, within [min_tolerance, tolerance]; 0: the rendered surface and the
+  // fixed tolerance.
+  double spread_scale = 2.0;
+  int min_spread_samples = 20;  // fewer Gaussians centred there: the fixed tolerance
   // A flat Gaussian counts as lying in the surface only when its normal is within about 35
   // degrees of the surface's (|cos| >= this); 0: depth alone decides.
   double min_alignment = 0.8;
@@ -54,6 +63,25 @@ double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVo
 Image background_inverse_depth(const Image& mask, const Image& depth, const Image& alpha, double near_limit,
                                const BackgroundOptions& options = {}, int threads = 1);
 
+// Where the surroundings' Gaussians lie against the rendered surface: offset (relative
+// inverse depth, > 0: in front) from which a view's Gaussians are judged, and the
+// tolerance about it.
+struct SurroundingsSurface {
+  double offset = 0;
+  double tolerance = -1;  // < 0: BackgroundOptions::tolerance
+};
+
+// The surroundings' surface in this view, from the Gaussians centred on the pixels just
+// outside the mask (from skip to skip + 2 x extent pixels out, rendered, not nearer than
+// near_limit): the weighted median of their offsets from the rendered surface there, and
+// spread_scale x the offsets' weighted interquartile range within [min_tolerance, tolerance].
+// The rendered surface and the fixed tolerance when fewer than min_spread_samples Gaussians
+// are centred there or spread_scale is 0. `total`: the view's Gaussians with their weights
+// (all its votes). `threads` (0: every core) does not change the result.
+SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camera& camera, const Image& mask,
+                                         const Image& depth, const Image& alpha, const ViewVotes& total,
+                                         double near_limit, const BackgroundOptions& options = {}, int threads = 1);
+
 // What is known of the target in the view: the clicked pixels and the current selection
 // (null before the first vote).
 struct BackgroundTarget {
@@ -71,8 +99,10 @@ struct BackgroundTarget {
 // here), or, where the view has no click, more than half of the selection's weight in the
 // mask. Returns the number moved.
 // `threads` (0: every core) does not change the result.
+// `surface`: where the surroundings' Gaussians lie (surroundings_surface; default: on the
+// rendered surface, within the fixed tolerance).
 size_t gate_background(const GaussianScene& scene, const Camera& camera, const Image& background,
                        const BackgroundTarget& target, ViewVotes& positive, ViewVotes& neutral,
-                       const BackgroundOptions& options = {}, int threads = 1);
+                       const BackgroundOptions& options = {}, int threads = 1, const SurroundingsSurface& surface = {});
 
 }  // namespace isegman::segment

@@ -264,6 +264,71 @@ TEST(BackgroundGate, ATargetJustInFrontOfTheWallNarrowsTheTolerance) {
   EXPECT_EQ(gate_background(poster.scene, poster.cam, bg, on_wall, p3, n3), 0u);
 }
 
+TEST(BackgroundGate, OffsetsCountFromWhereTheSurroundingsGaussiansLie) {
+  // A clean wall renders in front of its Gaussians' centres (blending favours the nearer
+  // ones): here it renders at 5 while its Gaussians lie at 5.05. A thin object 3.5 cm in
+  // front of them (a ladle's handle) then lies 0.3 % behind the rendered surface, "in" the wall.
+  auto build = [](double jitter, GateScene& s, ViewVotes& total) {
+    SplitMix64 rng(11);
+    for (int v = 0; v < 64; ++v)
+      for (int u = 0; u < 64; ++u) {
+        const int d = std::max({16 - u, u - 47, 16 - v, v - 47});  // pixels outside the mask square
+        if (d < 3 || d > 10 || (u + v) % 3 != 0) continue;
+        const double z = 5.05 + jitter * (2 * rng.uniform() - 1);
+        s.add((u + 0.5 - s.cam.cx) * z / s.cam.fx, (v + 0.5 - s.cam.cy) * z / s.cam.fy, z, 0.02, 0.02, 0.002);
+      }
+    total = s.positive;
+    s.positive = ViewVotes{};
+    s.add(-0.2, -0.2, 5.05, 0.03, 0.03, 0.03);   // the wall's Gaussians seen through a gap
+    s.add(0.2, -0.2, 5.015, 0.03, 0.03, 0.03);   // the object
+    const ViewVotes mask_votes = s.positive;
+    total.index.insert(total.index.end(), mask_votes.index.begin(), mask_votes.index.end());
+    total.weight.insert(total.weight.end(), mask_votes.weight.begin(), mask_votes.weight.end());
+  };
+  GateScene s;
+  ViewVotes total;
+  build(0.0, s, total);
+  const Image bg = background_inverse_depth(s.mask, s.depth, s.alpha, 3.8);
+  const BackgroundOptions o;
+  const SurroundingsSurface surface = surroundings_surface(s.scene, s.cam, s.mask, s.depth, s.alpha, total, 3.8, o);
+  std::printf("[ clean wall ] the surroundings' Gaussians lie at %.4f, tolerance %.4f\n", surface.offset, surface.tolerance);
+  EXPECT_NEAR(surface.offset, 5.0 / 5.05 - 1, 1e-4);
+  EXPECT_DOUBLE_EQ(surface.tolerance, o.min_tolerance);
+  const uint32_t wall = s.positive.index[0], object = s.positive.index[1];
+  ViewVotes positive = s.positive, neutral;
+  EXPECT_EQ(gate_background(s.scene, s.cam, bg, {}, positive, neutral, o, 1, surface), 1u);
+  EXPECT_EQ(positive.index, (std::vector<uint32_t>{object}));
+  EXPECT_EQ(neutral.index, (std::vector<uint32_t>{wall}));
+  // Measured from the rendered surface, the object goes with the wall.
+  ViewVotes p2 = s.positive, n2;
+  EXPECT_EQ(gate_background(s.scene, s.cam, bg, {}, p2, n2, o, 1), 2u);
+  // Threads do not change the measure.
+  const SurroundingsSurface two = surroundings_surface(s.scene, s.cam, s.mask, s.depth, s.alpha, total, 3.8, o, 2);
+  EXPECT_EQ(two.offset, surface.offset);
+  EXPECT_EQ(two.tolerance, surface.tolerance);
+
+  // A trained wall's Gaussians scatter +-1.2 % about it: the object is within that scatter,
+  // the tolerance grows to the fixed one, and the object is not told from the wall.
+  GateScene noisy;
+  build(0.06, noisy, total);
+  const SurroundingsSurface rough = surroundings_surface(noisy.scene, noisy.cam, noisy.mask, noisy.depth, noisy.alpha, total, 3.8, o);
+  std::printf("[ noisy wall ] the surroundings' Gaussians lie at %.4f, tolerance %.4f\n", rough.offset, rough.tolerance);
+  EXPECT_NEAR(rough.offset, 5.0 / 5.05 - 1, 2e-3);
+  EXPECT_DOUBLE_EQ(rough.tolerance, o.tolerance);
+  ViewVotes p3 = noisy.positive, n3;
+  EXPECT_EQ(gate_background(noisy.scene, noisy.cam, bg, {}, p3, n3, o, 1, rough), 2u);
+
+  // Too few Gaussians around the mask, or the measure switched off: the rendered surface.
+  BackgroundOptions few = o;
+  few.min_spread_samples = 100000;
+  const SurroundingsSurface none = surroundings_surface(s.scene, s.cam, s.mask, s.depth, s.alpha, total, 3.8, few);
+  EXPECT_EQ(none.offset, 0.0);
+  EXPECT_LT(none.tolerance, 0.0);
+  BackgroundOptions off = o;
+  off.spread_scale = 0;
+  EXPECT_LT(surroundings_surface(s.scene, s.cam, s.mask, s.depth, s.alpha, total, 3.8, off).tolerance, 0.0);
+}
+
 TEST(BackgroundGate, NearDepthIsTheWeightedNearSide) {
   GateScene s;
   s.add(0, 0, 2.0, 0.01, 0.01, 0.01);

@@ -259,5 +259,20 @@ TEST(HardCases, TheWallThroughABicyclesSpokesIsNotSelected) {
   EXPECT_LT(ours.scenery, without.scenery / 2);
 }
 
+TEST(HardCases, ABicyclesFrameNearTheWallIsNotTakenForTheWall) {
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // The rendered wall lies ~1 % in front of its Gaussians (blending favours the nearer
+  // ones), so measured from it the frame's tubes a few centimetres off the wall lay "in"
+  // it and voted against the bicycle. Measured from where the wall's Gaussians lie, with a
+  // tolerance as tight as their scatter, they are the bicycle, and less wall and floor is
+  // selected (2,115 Gaussians, 49 of them scenery, against 2,242 and 197).
+  SessionOptions rendered;
+  rendered.background_options.spread_scale = 0;
+  const auto [ours, without] = with_and_without("lounge/bicycle", rendered, "from the rendered surface");
+  EXPECT_GT(ours.iou, 0.88);
+  EXPECT_GT(ours.iou, without.iou + 0.08);
+  EXPECT_LT(ours.scenery, without.scenery / 2);
+}
+
 }  // namespace
 }  // namespace isegman::segment

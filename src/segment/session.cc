@@ -560,13 +560,17 @@ RoundReport Session::run_round(State& next, const State& prev) {
       // Background pixels must not be nearer than the target: outside the mask, nearer
       // things are occluders (or the object itself), not the surface behind it.
       const double near = near_depth(scene_, view.camera, vs.positive, 0.05);
-      const Image bg = background_inverse_depth(mask, view.depth, view.alpha,
-                                                near * (1 - o.background_options.occluder_margin), o.background_options,
-                                                o.threads);
+      const double near_limit = near * (1 - o.background_options.occluder_margin);
+      const Image bg = background_inverse_depth(mask, view.depth, view.alpha, near_limit, o.background_options, o.threads);
+      const SurroundingsSurface surface = surroundings_surface(scene_, view.camera, mask, view.depth, view.alpha,
+                                                               view.all_votes, near_limit, o.background_options, o.threads);
+      vs.background_offset = surface.offset;
+      vs.background_tolerance = surface.tolerance >= 0 ? surface.tolerance : o.background_options.tolerance;
       ViewVotes against;  // left out of the neutral weights: they count in the view's total
       const bool votes_against = o.background_against && !target.seeds.empty();
       vs.background_gaussians = gate_background(scene_, view.camera, bg, target, vs.positive,
-                                                votes_against ? against : vs.neutral, o.background_options, o.threads);
+                                                votes_against ? against : vs.neutral, o.background_options, o.threads,
+                                                surface);
     }
     vs.whole_pixels = 0;
     ViewVotes whole;

@@ -125,6 +125,8 @@ struct ViewState {
   int depth_layers = 0;                // depth layers the mask's content splits into
   double gated_share = 0;              // share of the mask's weight outside the target's layer
   size_t background_gaussians = 0;     // Gaussians of the mask made neutral as background seen through gaps
+  double background_offset = 0;        // where the surroundings' Gaussians lie against the rendered surface
+  double background_tolerance = 0;     // ... and how near that counts as on it (relative inverse depth)
   int whole_pixels = 0;                // pixels the larger candidates add around the mask (left open: part or whole?)
   bool inspected = false;              // overlap was measured (not for the clicked view, which votes first)
   // While the round votes: P-votes of the mask (when accepted) and the depth-gated weights
