@@ -84,6 +84,7 @@ int run_eval_ablation(const Args& args) {
       {"- object prior", [](segment::SessionOptions& o) { o.object_prior = false; }},
       {"- background votes against", [](segment::SessionOptions& o) { o.background_against = false; }},
       {"- surroundings' surface", [](segment::SessionOptions& o) { o.background_options.spread_scale = 0; }},
+      {"- whole islands", [](segment::SessionOptions& o) { o.whole_islands.enabled = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

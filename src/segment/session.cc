@@ -36,6 +36,7 @@ std::string describe(const VotingParts& p) {
 SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = false;
+  o.whole_islands.enabled = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
   o.propagation.hidden_fallback = true;
@@ -816,6 +817,12 @@ RoundReport Session::run_round(State& next, const State& prev) {
                                                  {o.whole_neutral, o.whole_min_share}));
   } else {
     next.selection = live.eligible();
+  }
+  if (o.whole_islands.enabled) {
+    TimeInto timed{part.decide};
+    if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
+    rep.whole_islands = drop_whole_islands(next.selection, acc, scene_, *neighbours_, o.tau, o.min_total_weight,
+                                           o.centre_rule, o.whole_islands);
   }
   rep.selected = size_t(std::count(next.selection.begin(), next.selection.end(), true));
   rep.views_segmented = segmented;

@@ -10,6 +10,7 @@
 #include "models/sam.h"
 #include "segment/background_gate.h"
 #include "segment/coherence.h"
+#include "segment/whole_islands.h"
 #include "segment/depth_layers.h"
 #include "segment/live_selection.h"
 #include "segment/propagation.h"
@@ -68,6 +69,9 @@ struct SessionOptions {
   // times the mask's area and of predicted IoU >= min_granularity_score count.
   bool whole_neutral = true;
   double max_whole_growth = 6, whole_min_share = 0.3;
+  // ... and what it alone selects must touch, through selected Gaussians, what the votes
+  // select on their own (whole_islands.h): a neighbour SAM merged in some views stands apart.
+  IslandOptions whole_islands{true};
   // Views no click reached (point out of frame or hidden) are prompted from the selection
   // rendered in them (a box and an interior point, as SA3D does), for this many rounds.
   int selection_prompt_rounds = 2;
@@ -159,6 +163,7 @@ struct RoundReport {
   int views_segmented = 0, accepted = 0, dropped = 0, prompted = 0;
   size_t selected = 0;
   bool larger_granularity = false;  // the first view voted with a larger candidate than SAM's choice
+  size_t whole_islands = 0;         // Gaussians the whole rule alone selected, apart from the rest (dropped)
   bool duplicate = false;  // the click repeated an earlier one: nothing changed
 };
 
