@@ -380,12 +380,16 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
   const std::vector<uint8_t> near_mask = dilated(mask, x0, y0, x1, y1, inner);
   const std::vector<uint8_t> ring_reach = dilated(mask, x0, y0, x1, y1, outer);
   // (offset, weight) of the Gaussians centred on the ring, per chunk, merged in order.
-  const size_t n = total.index.size();
+  // A large scene's view shows ~10^6 Gaussians: every stride-th of them is plenty for a
+  // median and a spread (a view of up to 2^18 Gaussians is read whole).
+  const size_t stride = std::max<size_t>(1, total.index.size() >> 18);
+  const size_t n = (total.index.size() + stride - 1) / stride;
   const size_t chunks = (n + kListGrain - 1) / kListGrain;
   std::vector<std::vector<std::pair<double, double>>> found(chunks);
   parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
     std::vector<std::pair<double, double>>& out = found[begin / kListGrain];
-    for (size_t k = begin; k < end; ++k) {
+    for (size_t s = begin; s < end; ++s) {
+      const size_t k = s * stride;
       const uint32_t g = total.index[k];
       const Vec3 c = camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]});
       if (c.z <= 0) continue;

@@ -77,7 +77,8 @@ struct SurroundingsSurface {
 // spread_scale x the offsets' weighted interquartile range within [min_tolerance, tolerance].
 // The rendered surface and the fixed tolerance when fewer than min_spread_samples Gaussians
 // are centred there or spread_scale is 0. `total`: the view's Gaussians with their weights
-// (all its votes). `threads` (0: every core) does not change the result.
+// (all its votes); of a list longer than 2^18 every k-th is read, k = its length / 2^18
+// (rounded down). `threads` (0: every core) does not change the result.
 SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camera& camera, const Image& mask,
                                          const Image& depth, const Image& alpha, const ViewVotes& total,
                                          double near_limit, const BackgroundOptions& options = {}, int threads = 1);
