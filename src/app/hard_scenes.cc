@@ -64,6 +64,31 @@ void box(SceneBuilder& b, const Vec3& c, double h, double hz, int n, double size
   }
 }
 
+// A shrub's leaves: `n` leaves of five strips along a random direction, centred in the
+// ellipsoid of `radii` around `c` (only its front half towards -y, when `front_half`),
+// facing the cameras (-y) within `tilt`, coloured between `lo` and `hi`.
+struct Leaves {
+  Vec3 radii;
+  bool front_half = false;
+  double tilt = 0.4, spacing = 0.03, length = 0.026, width = 0.02;
+  Vec3 lo, hi;
+};
+
+void leaves(SceneBuilder& b, const Vec3& c, const Leaves& l, int n, int label) {
+  SplitMix64& rng = b.rng;
+  for (int leaf = 0; leaf < n; ++leaf) {
+    Vec3 u;
+    do u = {rng.range(-1, 1), l.front_half ? rng.range(-1, 0) : rng.range(-1, 1), rng.range(-1, 1)};
+    while (dot(u, u) > 1);
+    const Vec3 at = c + Vec3{u.x * l.radii.x, u.y * l.radii.y, u.z * l.radii.z};
+    const Vec3 dir = normalized(Vec3{rng.normal(), rng.normal() * 0.3, rng.normal()});
+    const Vec3 nrm = normalized(Vec3{rng.normal() * l.tilt, -1, rng.normal() * l.tilt});
+    const Vec3 col{rng.range(l.lo.x, l.hi.x), rng.range(l.lo.y, l.hi.y), rng.range(l.lo.z, l.hi.z)};
+    for (int k = -2; k <= 2; ++k)
+      b.strip(at + dir * (k * l.spacing), nrm, dir, l.length, l.width * (1 - std::abs(k) * 0.2), col, label, 0.04);
+  }
+}
+
 // What each scene's builder starts from: the named scene (SH degree 3), its random stream
 // and a builder of labelled Gaussians into it. Built in place (its members refer to each
 // other); `auto& [s, demo, g, rng, b] = start;` names the parts, and a builder returns
@@ -205,16 +230,8 @@ EvalScene alcove(const EvalSetOptions& opt) {
   // The shrub: leaves in a half-ellipsoid whose back reaches 4 cm from the wall.
   const Vec3 shrub_c{-1.0, wall_y - 0.39, 1.0};
   const int shrub = add_object(demo, "shrub", shrub_c, 0.6f);
-  for (int leaf = 0, n = int(110 * std::max(1.0, d)); leaf < n; ++leaf) {
-    Vec3 u;
-    do u = {rng.range(-1, 1), rng.range(-1, 0), rng.range(-1, 1)};
-    while (dot(u, u) > 1);
-    const Vec3 c = shrub_c + Vec3{u.x * 0.5, u.y * 0.35, u.z * 0.5};
-    const Vec3 dir = normalized(Vec3{rng.normal(), rng.normal() * 0.3, rng.normal()});
-    const Vec3 nrm = normalized(Vec3{rng.normal() * 0.4, -1, rng.normal() * 0.4});
-    const Vec3 col{rng.range(0.10, 0.25), rng.range(0.38, 0.58), rng.range(0.10, 0.20)};
-    for (int k = -2; k <= 2; ++k) b.strip(c + dir * (k * 0.03), nrm, dir, 0.026, 0.02 * (1 - std::abs(k) * 0.2), col, shrub, 0.04);
-  }
+  leaves(b, shrub_c, {{0.5, 0.35, 0.5}, true, 0.4, 0.03, 0.026, 0.02, {0.10, 0.38, 0.10}, {0.25, 0.58, 0.20}},
+         int(110 * std::max(1.0, d)), shrub);
   for (int i = 0; i < 50; ++i) {  // its stem, down to the floor
     const double t = i / 49.0;
     b.strip(Vec3{-1.0, wall_y - 0.3, 0.0} * (1 - t) + (shrub_c - Vec3{0, 0.05, 0.3}) * t, {0, -1, 0}, {0, 0, 1}, 0.02,
@@ -915,16 +932,8 @@ EvalScene porch(const EvalSetOptions& opt) {
   b.shape_jitter = 0.3;
   const Vec3 shrub_c{-1.05, wall_y - 0.12 - 0.3, 0.62};
   const int shrub = add_object(demo, "shrub", shrub_c, 0.6f);
-  for (int leaf = 0, n = int(150 * std::max(1.0, d)); leaf < n; ++leaf) {
-    Vec3 u;
-    do u = {rng.range(-1, 1), rng.range(-1, 1), rng.range(-1, 1)};
-    while (dot(u, u) > 1);
-    const Vec3 c = shrub_c + Vec3{u.x * 0.45, u.y * 0.3, u.z * 0.45};
-    const Vec3 dir = normalized(Vec3{rng.normal(), rng.normal() * 0.3, rng.normal()});
-    const Vec3 nrm = normalized(Vec3{rng.normal() * 0.5, -1, rng.normal() * 0.5});
-    const Vec3 col{rng.range(0.10, 0.22), rng.range(0.30, 0.48), rng.range(0.08, 0.16)};
-    for (int k = -2; k <= 2; ++k) b.strip(c + dir * (k * 0.028), nrm, dir, 0.024, 0.018 * (1 - std::abs(k) * 0.2), col, shrub, 0.04);
-  }
+  leaves(b, shrub_c, {{0.45, 0.3, 0.45}, false, 0.5, 0.028, 0.024, 0.018, {0.10, 0.30, 0.08}, {0.22, 0.48, 0.16}},
+         int(150 * std::max(1.0, d)), shrub);
   for (int i = 0; i < 40; ++i) {  // the trunk, up from the paving
     const double t = i / 39.0;
     b.strip(Vec3{shrub_c.x, shrub_c.y + 0.05, 0.0} * (1 - t) + (shrub_c - Vec3{0, 0, 0.25}) * t, {0, -1, 0}, {0, 0, 1}, 0.02,
