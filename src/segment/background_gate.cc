@@ -11,6 +11,35 @@ namespace isegman::segment {
 
 namespace {
 
+// The bounding box of a mask's pixels (> 0.5) and their centre; x1 < 0 when there are none.
+struct MaskBounds {
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+  double cx = 0, cy = 0, area = 0;
+};
+
+MaskBounds mask_bounds(const Image& mask) {
+  MaskBounds m;
+  m.x0 = mask.width, m.y0 = mask.height;
+  for (int y = 0; y < mask.height; ++y)
+    for (int x = 0; x < mask.width; ++x)
+      if (mask.at(x, y) > 0.5f) {
+        m.x0 = std::min(m.x0, x), m.y0 = std::min(m.y0, y);
+        m.x1 = std::max(m.x1, x), m.y1 = std::max(m.y1, y);
+        m.cx += x + 0.5, m.cy += y + 0.5, m.area += 1;
+      }
+  return m;
+}
+
+// The first value of (value, weight) pairs sorted by value whose running weight reaches
+// share q of the total (the last value when rounding keeps it short).
+double weighted_quantile(const std::vector<std::pair<double, double>>& sorted, double q) {
+  double total = 0, run = 0;
+  for (const auto& s : sorted) total += s.second;
+  for (const auto& s : sorted)
+    if ((run += s.second) >= q * total) return s.first;
+  return sorted.back().first;
+}
+
 // What the lines of one direction give.
 struct LineEstimates {
   // (pixel, inverse depth) interpolated in a run: a pixel lies on one line of each
@@ -247,15 +276,9 @@ Image background_inverse_depth(const Image& mask, const Image& depth, const Imag
   // Only the mask's bounding box, widened by the farthest pixel a sample reads, matters:
   // lines are walked within it (the same result as over the whole image, for less work).
   // The same pass gives the mask's centre, around which the plane's sides are counted.
-  int bx0 = w, by0 = h, bx1 = -1, by1 = -1;
-  double cx = 0, cy = 0, area = 0;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      if (mask.at(x, y) > 0.5f) {
-        bx0 = std::min(bx0, x), by0 = std::min(by0, y);
-        bx1 = std::max(bx1, x), by1 = std::max(by1, y);
-        cx += x + 0.5, cy += y + 0.5, area += 1;
-      }
+  const MaskBounds m = mask_bounds(mask);
+  const int bx0 = m.x0, by0 = m.y0, bx1 = m.x1, by1 = m.y1;
+  const double cx = m.cx, cy = m.cy, area = m.area;
   if (bx1 < 0) return out;
   const int reach = 1 + o.skip + 2 * std::max(0, o.extent);
   const int x0 = std::max(0, bx0 - reach), y0 = std::max(0, by0 - reach);
@@ -331,7 +354,7 @@ std::vector<uint8_t> dilated(const Image& mask, int x0, int y0, int x1, int y1, 
   const int bw = x1 - x0 + 1, bh = y1 - y0 + 1;
   std::vector<uint8_t> rows(size_t(bw) * size_t(bh), 0), out(rows.size(), 0);
   for (int y = 0; y < bh; ++y) {
-    int last = -1 << 20;  // the last mask pixel seen on the row, sweeping right then left
+    int last = -(1 << 20);  // the last mask pixel seen on the row, sweeping right then left
     for (int x = 0; x < bw; ++x) {
       if (mask.at(x0 + x, y0 + y) > 0.5f) last = x;
       rows[size_t(y) * size_t(bw) + size_t(x)] = x - last <= r;
@@ -343,7 +366,7 @@ std::vector<uint8_t> dilated(const Image& mask, int x0, int y0, int x1, int y1, 
     }
   }
   for (int x = 0; x < bw; ++x) {
-    int last = -1 << 20;
+    int last = -(1 << 20);
     for (int y = 0; y < bh; ++y) {
       if (rows[size_t(y) * size_t(bw) + size_t(x)]) last = y;
       out[size_t(y) * size_t(bw) + size_t(x)] = y - last <= r;
@@ -366,10 +389,8 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
   const size_t npx = size_t(w) * size_t(h);
   if (o.spread_scale <= 0 || w == 0 || h == 0 || depth.data.size() != npx || alpha.data.size() != npx)
     return {};
-  int bx0 = w, by0 = h, bx1 = -1, by1 = -1;
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      if (mask.at(x, y) > 0.5f) bx0 = std::min(bx0, x), by0 = std::min(by0, y), bx1 = std::max(bx1, x), by1 = std::max(by1, y);
+  const MaskBounds m = mask_bounds(mask);
+  const int bx0 = m.x0, by0 = m.y0, bx1 = m.x1, by1 = m.y1;
   if (bx1 < 0) return {};
   // The ring the line estimates sample: past the `skip` pixels whose depth blends both
   // sides, out to where a sample's continuation is checked.
@@ -390,10 +411,8 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
     std::vector<std::pair<double, double>>& out = found[begin / kListGrain];
     for (size_t s = begin; s < end; ++s) {
       const size_t k = s * stride;
-      const uint32_t g = total.index[k];
-      const Vec3 c = camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]});
-      if (c.z <= 0) continue;
-      const double u = camera.fx * c.x / c.z + camera.cx, v = camera.fy * c.y / c.z + camera.cy;
+      double u, v, cz;
+      if (!camera.project(scene.position(total.index[k]), u, v, &cz)) continue;
       if (!(u >= x0 && v >= y0 && u < x1 + 1 && v < y1 + 1)) continue;
       const int px = int(u), py = int(v);
       const size_t b = size_t(py - y0) * size_t(bw) + size_t(px - x0);
@@ -401,25 +420,17 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
       const size_t p = size_t(py) * size_t(w) + size_t(px);
       const double z = depth.data[p];
       if (!(alpha.data[p] > 0.5f) || !(z > 0) || z < near_limit) continue;
-      out.push_back({z / c.z - 1, double(total.weight[k])});  // (1/c.z) / (1/z) - 1
+      out.push_back({z / cz - 1, double(total.weight[k])});  // (1/cz) / (1/z) - 1
     }
   });
   std::vector<std::pair<double, double>> all;
   for (auto& f : found) all.insert(all.end(), f.begin(), f.end());
   if (int(all.size()) < std::max(1, o.min_spread_samples)) return {};
   std::sort(all.begin(), all.end());
-  double sum = 0;
-  for (const auto& a : all) sum += a.second;
-  auto quantile = [&](double q) {
-    double run = 0;
-    for (const auto& a : all)
-      if ((run += a.second) >= q * sum) return a.first;
-    return all.back().first;
-  };
   SurroundingsSurface out;
-  out.offset = quantile(0.5);
-  out.tolerance = std::clamp(o.spread_scale * (quantile(0.75) - quantile(0.25)), std::min(o.min_tolerance, o.tolerance),
-                             o.tolerance);
+  out.offset = weighted_quantile(all, 0.5);
+  out.tolerance = std::clamp(o.spread_scale * (weighted_quantile(all, 0.75) - weighted_quantile(all, 0.25)),
+                             std::min(o.min_tolerance, o.tolerance), o.tolerance);
   return out;
 }
 
@@ -435,13 +446,11 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   std::vector<uint8_t> at_seed(n, 0);
   parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
-      const uint32_t g = positive.index[k];
-      const Vec3 c = camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]});
-      if (c.z <= 0) continue;
-      const double u = camera.fx * c.x / c.z + camera.cx, v = camera.fy * c.y / c.z + camera.cy;
+      double u, v, cz;
+      if (!camera.project(scene.position(positive.index[k]), u, v, &cz)) continue;
       if (u >= 0 && v >= 0 && u < background.width && v < background.height) {
         const float bg = background.at(int(u), int(v));
-        if (bg > 0) offset[k] = (1.0 / c.z) / bg - 1 - surface.offset;
+        if (bg > 0) offset[k] = (1.0 / cz) / bg - 1 - surface.offset;
         pixel[2 * k] = int32_t(u);
         pixel[2 * k + 1] = int32_t(v);
       }
@@ -462,14 +471,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   double tolerance = surface.tolerance >= 0 ? surface.tolerance : o.tolerance;
   if (!seed_offsets.empty() && o.min_tolerance > 0 && o.min_tolerance < tolerance) {
     std::sort(seed_offsets.begin(), seed_offsets.end());
-    double total = 0, run = 0;
-    for (const auto& so : seed_offsets) total += so.second;
-    double median = seed_offsets.back().first;
-    for (const auto& so : seed_offsets)
-      if ((run += so.second) >= 0.5 * total) {
-        median = so.first;
-        break;
-      }
+    const double median = weighted_quantile(seed_offsets, 0.5);
     if (median >= 2 * o.min_tolerance && median <= tolerance) tolerance = 0.5 * median;
   }
   std::vector<uint8_t> behind_surface(n, 0);
