@@ -56,14 +56,10 @@ void SceneBuilder::splat(const Vec3& p, const Vec3& n, double size, const Vec3& 
   size *= size_scale;
   double sx = size * rng.range(0.8, 1.25), sy = size * rng.range(0.8, 1.25);
   Quat q = align_z_to(n) * Quat::from_axis_angle({0, 0, 1}, rng.range(0, M_PI));
-  if (depth_jitter > 0 || shape_jitter > 0) {
-    Vec3 pj = p;
-    double sz = size * 0.15;
-    jitter(rng, depth_jitter, shape_jitter, n, pj, q, sx, sy, sz);
-    push(g, labels, rng, degree, pj, n, q, sx, sy, sz, rgb, label, shine);
-    return;
-  }
-  push(g, labels, rng, degree, p, n, q, sx, sy, size * 0.15, rgb, label, shine);
+  Vec3 at = p;
+  double sz = size * 0.15;
+  jitter(rng, depth_jitter, shape_jitter, n, at, q, sx, sy, sz);
+  push(g, labels, rng, degree, at, n, q, sx, sy, sz, rgb, label, shine);
 }
 
 void SceneBuilder::strip(const Vec3& p, const Vec3& n, const Vec3& along, double length, double width,
@@ -74,17 +70,11 @@ void SceneBuilder::strip(const Vec3& p, const Vec3& n, const Vec3& along, double
   if (norm(x) < 1e-9) x = std::fabs(z.x) < 0.9 ? cross(z, Vec3{1, 0, 0}) : cross(z, Vec3{0, 1, 0});
   x = normalized(x);
   const Vec3 y = cross(z, x);
-  const Quat q = Quat::from_matrix(Mat3::from_cols(x, y, z));
-  if (depth_jitter > 0 || shape_jitter > 0) {
-    Vec3 pj = p;
-    Quat qj = q;
-    double sx = length * size_scale, sy = width * size_scale, sz = 0.15 * width * size_scale;
-    jitter(rng, depth_jitter, shape_jitter, n, pj, qj, sx, sy, sz);
-    push(g, labels, rng, degree, pj, n, qj, sx, sy, sz, rgb, label, shine);
-    return;
-  }
-  push(g, labels, rng, degree, p, n, q, length * size_scale, width * size_scale,
-       0.15 * width * size_scale, rgb, label, shine);
+  Quat q = Quat::from_matrix(Mat3::from_cols(x, y, z));
+  Vec3 at = p;
+  double sx = length * size_scale, sy = width * size_scale, sz = 0.15 * width * size_scale;
+  jitter(rng, depth_jitter, shape_jitter, n, at, q, sx, sy, sz);
+  push(g, labels, rng, degree, at, n, q, sx, sy, sz, rgb, label, shine);
 }
 
 void SceneBuilder::floater(const Vec3& p, double size, const Vec3& rgb, double opacity) {
