@@ -139,7 +139,6 @@ bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera
 }
 
 // Tile buffers hold pixel k = row * 16 + column; a row is two groups of 8 lanes.
-constexpr int kLanes = 8;
 
 // Per-entry bookkeeping of a sums pass (TilePass::on_tile): the entry's summed weights
 // over the pixels of `lanes` (8 bits per row group, bit i = column x_base + i), and

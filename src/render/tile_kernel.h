@@ -35,6 +35,10 @@ inline uint16_t encode_half_width(float e) {
 }
 inline float decode_half_width(uint16_t h) { return h == kWholeImage ? 1e9f : float(h) * kHalfWidthUnit; }
 
+// The tile kernel blends a tile's row in groups of this many pixels (one vector), so a
+// pass over some of a tile's pixels costs the groups they touch.
+constexpr int kLanes = 8;
+
 struct PreparedFrame::Data {
   std::vector<Splat> splats;          // visible Gaussians in depth order
   std::vector<float> rgb;             // 3 per splat; empty: the frame renders black

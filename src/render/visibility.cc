@@ -122,13 +122,45 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     raster[t] = summed[t] || (values && (all_tiles || touched[t]));
     any_raster |= raster[t] != 0;
   }
+  // A partly covered tile of a compacted frame may blend the pixels outside the mask
+  // instead, when they occupy fewer row groups of 8 lanes (the unit the tile kernel
+  // blends): the mask's sums are the stored sums less theirs, exactly, being integers.
+  // Only when no image is rendered there (the image needs the mask's own pixels).
+  std::vector<uint8_t> outside(tiles, 0);
+  Image flipped;
+  if (stored && mask && !values) {
+    for (size_t t = 0; t < tiles; ++t) {
+      if (!summed[t]) continue;
+      const int x0 = int(t % gx) * kTileSize, y0 = int(t / gx) * kTileSize;
+      const int x1 = std::min(W, x0 + kTileSize), y1 = std::min(H, y0 + kTileSize);
+      int in_groups = 0, out_groups = 0;
+      for (int y = y0; y < y1; ++y)
+        for (int xg = x0; xg < x1; xg += kLanes) {
+          bool in = false, out = false;
+          for (int x = xg; x < std::min(x1, xg + kLanes); ++x) (mask->data[size_t(y) * W + x] > 0.5f ? in : out) = true;
+          in_groups += in;
+          out_groups += out;
+        }
+      outside[t] = out_groups < in_groups;
+    }
+    for (size_t t = 0; t < tiles; ++t) {
+      if (!outside[t]) continue;
+      if (flipped.empty()) flipped = *mask;
+      const int x0 = int(t % gx) * kTileSize, y0 = int(t / gx) * kTileSize;
+      for (int y = y0; y < std::min(H, y0 + kTileSize); ++y)
+        for (int x = x0; x < std::min(W, x0 + kTileSize); ++x) {
+          float& p = flipped.data[size_t(y) * W + x];
+          p = p > 0.5f ? 0.f : 1.f;
+        }
+    }
+  }
   const int slots = resolve_threads(settings.threads);
   std::vector<std::vector<uint32_t>> keys(static_cast<size_t>(slots)), sums(static_cast<size_t>(slots));
-  auto add_pairs = [&](int w, size_t t, const uint32_t* entry_sums) {
+  auto add_pairs = [&](int w, size_t t, const uint32_t* entry_sums, bool rest_of_tile) {
     std::vector<uint32_t>& k = keys[size_t(w)];
     std::vector<uint32_t>& s = sums[size_t(w)];
     for (size_t e = d.tile_start[t]; e < d.tile_start[t + 1]; ++e) {
-      const uint32_t v = entry_sums[e - d.tile_start[t]];
+      const uint32_t v = rest_of_tile ? d.entry_weight[e] - entry_sums[e - d.tile_start[t]] : entry_sums[e - d.tile_start[t]];
       if (v) {
         k.push_back(d.splats[d.tile_list[e]].index);
         s.push_back(v);
@@ -142,11 +174,13 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     TilePass pass;
     pass.values = values;
     pass.tile_mask = &raster;
-    pass.sum_mask = mask;
+    pass.sum_mask = flipped.empty() ? mask : &flipped;
     pass.sum_tiles = &summed;
     // Only the mask's pixels matter when no image is returned, or only its pixels are asked for.
     pass.sum_pixels_only = mask && (!values || extent == ValueExtent::kMaskPixels);
-    pass.on_tile = [&](int w, size_t t, const uint32_t* entry_sums, const uint8_t*) { add_pairs(w, t, entry_sums); };
+    pass.on_tile = [&](int w, size_t t, const uint32_t* entry_sums, const uint8_t*) {
+      add_pairs(w, t, entry_sums, outside[t] != 0);
+    };
     RenderOutput r = run_tiles(frame, rs, pass);
     if (values && value_image) *value_image = std::move(r.value);
   } else if (values && value_image) {
@@ -154,7 +188,7 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
   }
   if (stored)
     parallel_for(tiles, slots, [&](int w, size_t t) {
-      if (touched[t] && !summed[t]) add_pairs(w, t, d.entry_weight.data() + d.tile_start[t]);
+      if (touched[t] && !summed[t]) add_pairs(w, t, d.entry_weight.data() + d.tile_start[t], false);
     });
 
   // Sum per Gaussian: sort the (Gaussian, sum) pairs by Gaussian (integer sums, so the

@@ -142,6 +142,16 @@ TEST(Visibility, SumsMatchTheRoundedWeightsOfEveryPixel) {
     expect_same(weight_sums(plain, &mask, s), masked);
     expect_same(weight_sums(compact, &mask, s), masked);
   }
+  // The mask's complement: its partly covered tiles are mostly covered, so a compacted
+  // frame blends the pixels outside it there and subtracts their sums from the stored ones.
+  Image complement = mask;
+  for (float& p : complement.data) p = p > 0.5f ? 0.f : 1.f;
+  const GaussianWeights rest = reference_sums(g, cam, &complement);
+  ASSERT_GT(rest.index.size(), 100u);
+  for (const RenderSettings& s : {one, three}) {
+    expect_same(weight_sums(plain, &complement, s), rest);
+    expect_same(weight_sums(compact, &complement, s), rest);
+  }
   // With values the same pass renders their blend over the mask's tiles (every tile
   // with all_tiles), as rasterize does.
   std::vector<float> values(g.size());
