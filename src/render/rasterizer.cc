@@ -269,6 +269,23 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, 
           finished += y_begin + r < y_end && x_begin + i < x_end;
         }
   }
+  // Row groups with a pixel still open (bit r * 2 + half). A group whose every pixel has
+  // ended changes nothing when blended, so it is skipped: pixels past the image's edge
+  // count as ended here (no pass reads them) but not in `finished`.
+  constexpr int kGroups = kTileSize * kTileSize / kLanes;
+  static_assert(kGroups <= 32, "one bit per row group");
+  uint32_t open = 0;
+  for (int r = 0; r < kTileSize; ++r)
+    for (int i = 0; i < kTileSize; ++i) {
+      int32_t& d = b.done[r * kTileSize + i];
+      if (y_begin + r >= y_end || x_begin + i >= x_end) d = -1;
+      if (d == 0) open |= 1u << (r * 2 + i / kLanes);
+    }
+  auto group_ended = [&](int k0) {
+    for (int i = 0; i < kLanes; ++i)
+      if (b.done[k0 + i] == 0) return false;
+    return true;
+  };
   EntrySum unused;
   for (size_t n = 0; n < count && finished < pixels; ++n) {
     const Splat& g = splats[list[n]];
@@ -288,11 +305,17 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, 
       for (int half = 0; half < kTileSize / kLanes; ++half) {
         const int xb = x_begin + half * kLanes;
         if (xb > x1 || xb + kLanes - 1 < x0) continue;
-        const unsigned sum_lanes = kSums ? lanes[(y - y_begin) * 2 + half] : 0u;
-        if (lanes_only && sum_lanes == 0) continue;
-        finished += blend_group<kVisit, kSums, kShade>(g, col, depth, value, dy, row + half * kLanes, xb, x0, x1, y, s.alpha_max,
-                                               want_value, b, evaluated, contributed, visitor, worker, sum_lanes,
-                                               entry);
+        const int group = (y - y_begin) * 2 + half;
+        if (!((open >> group) & 1u)) continue;
+        const unsigned sum_lanes = kSums ? lanes[group] : 0u;
+        const int k0 = row + half * kLanes;
+        const int ended = blend_group<kVisit, kSums, kShade>(g, col, depth, value, dy, k0, xb, x0, x1, y, s.alpha_max,
+                                                             want_value, b, evaluated, contributed, visitor, worker,
+                                                             sum_lanes, entry);
+        if (ended > 0) {
+          finished += ended;
+          if (group_ended(k0)) open &= ~(1u << group);
+        }
       }
     }
   }
