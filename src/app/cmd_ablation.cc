@@ -18,7 +18,6 @@
 #include "app/hard_scenes.h"
 #include "app/segment_args.h"
 #include "core/error.h"
-#include "core/random.h"
 #include "io/atomic_file.h"
 #include "io/scene_loader.h"
 #include "io/image_io.h"
@@ -62,9 +61,8 @@ int run_eval_ablation(const Args& args) {
   if (!(opt.density > 0.01f && opt.density <= 50.f)) throw Error("--density must be in (0.01, 50]");
   const std::string only = args.get("only", "");
   const std::string overlays = args.get("overlays", "");
-  // Clicks per synthetic task: its own click, then clicks drawn anywhere on the object as
-  // its clicked camera shows it (where its truth mask is), as users click: near edges, on
-  // thin parts. The task's score is the mean over them.
+  // Clicks per synthetic task: its own click, then clicks drawn anywhere on the object
+  // (task_clicks). The task's score is the mean over them.
   const int clicks_per_task = args.get_int("clicks-per-task", 1);
   if (clicks_per_task < 1 || clicks_per_task > 50) throw Error("--clicks-per-task must be between 1 and 50");
   SegmentSetup setup = parse_segment_setup(args);
@@ -202,42 +200,23 @@ int run_eval_ablation(const Args& args) {
     write_file_atomic((dir / "views.txt").string(), table);  // the per-view evidence as figures
   };
   // Each task's clicks (the same for every configuration).
-  std::vector<std::vector<Click>> task_clicks;
-  for (const auto& [s, t] : tasks) {
-    std::vector<Click> clicks = {pixel_centre_click(t->x, t->y, 1)};
-    if (clicks_per_task > 1) {
-      const Camera& cam = s->scene.bundle.cameras[size_t(t->camera)];
-      const Image gt = segment::selection_mask(s->scene.bundle.gaussians, cam, demo_object_mask(s->scene, t->object),
-                                               cam.width, cam.height);
-      std::vector<std::pair<int, int>> on;
-      for (int y = 0; y < gt.height; ++y)
-        for (int x = 0; x < gt.width; ++x)
-          if (gt.at(x, y) > 0.5f) on.push_back({x, y});
-      uint64_t seed = 1469598103934665603ull;  // FNV-1a of the task's name: fixed draws per task
-      for (char ch : t->name) seed = (seed ^ uint8_t(ch)) * 1099511628211ull;
-      SplitMix64 rng(seed);
-      for (int k = 1; k < clicks_per_task && !on.empty(); ++k) {
-        const auto& [x, y] = on[size_t(rng.uniform() * double(on.size()))];
-        clicks.push_back(pixel_centre_click(x, y, 1));
-      }
-    }
-    task_clicks.push_back(std::move(clicks));
-  }
+  std::vector<std::vector<Click>> clicks_of;
+  for (const auto& [s, t] : tasks) clicks_of.push_back(task_clicks(*s, *t, clicks_per_task));
   if (clicks_per_task > 1)
     std::printf("each synthetic task: its own click and %d drawn on the object in its clicked view; the mean IoU over "
-                "them (the row below each configuration: the worst of them)\n\n",
+                "them (the rows below each configuration: the task's own click alone, the worst click)\n\n",
                 clicks_per_task - 1);
   for (size_t ci = 0; ci < configs.size(); ++ci) {
     segment::SessionOptions so = setup.session;
     configs[ci].apply(so);
     double miou = 0, macc = 0, ms = 0, worst = 1;
-    std::vector<double> per, per_worst;
+    std::vector<double> per, per_worst, per_own;
     for (size_t ti = 0; ti < tasks.size(); ++ti) {
       const auto& [s, t] = tasks[ti];
       double iou = 0, acc = 0, task_ms = 0, task_worst = 1;
-      for (size_t k = 0; k < task_clicks[ti].size(); ++k) {
+      for (size_t k = 0; k < clicks_of[ti].size(); ++k) {
         segment::PipelineTimings tm;
-        auto session = segment::segment_from_prompts(s->scene.bundle, t->camera, {task_clicks[ti][k]}, sam, so,
+        auto session = segment::segment_from_prompts(s->scene.bundle, t->camera, {clicks_of[ti][k]}, sam, so,
                                                      setup.views, "all", &tm);
         const segment::MaskScore sc = segment::score_selection(
             s->scene.bundle.gaussians, s->scene.bundle.cameras, demo_object_mask(s->scene, t->object), session->selection());
@@ -245,13 +224,14 @@ int run_eval_ablation(const Args& args) {
         acc += sc.accuracy;
         task_ms += tm.ms_interaction();
         task_worst = std::min(task_worst, sc.iou);
+        if (k == 0) per_own.push_back(sc.iou);
         if (!overlays.empty() && ci == 0) {  // the first configuration's evidence, per task (and click) and view
           std::string name = s->name + "_" + s->scene.objects[size_t(t->object)].name;
           if (k > 0) name += "_click" + std::to_string(k);
           write_overlays(*session, name);
         }
       }
-      const double n = double(task_clicks[ti].size());
+      const double n = double(clicks_of[ti].size());
       iou /= n;
       per.push_back(iou);
       per_worst.push_back(task_worst);
@@ -281,15 +261,18 @@ int run_eval_ablation(const Args& args) {
     for (double p : per) std::printf(" %.1f |", 100 * p);
     std::printf("\n");
     if (clicks_per_task > 1 && !tasks.empty()) {
-      double mean_worst = 0, min_worst = 1;
-      for (double p : per_worst) {
-        mean_worst += p;
-        min_worst = std::min(min_worst, p);
-      }
-      std::printf("| ... its worst click per task (synthetic) | %.2f | %.1f | | |", 100 * mean_worst / double(per_worst.size()),
-                  100 * min_worst);
-      for (double p : per_worst) std::printf(" %.1f |", 100 * p);
-      std::printf("\n");
+      auto row = [](const char* label, const std::vector<double>& v) {
+        double mean = 0, least = 1;
+        for (double p : v) {
+          mean += p;
+          least = std::min(least, p);
+        }
+        std::printf("| %s | %.2f | %.1f | | |", label, 100 * mean / double(v.size()), 100 * least);
+        for (double p : v) std::printf(" %.1f |", 100 * p);
+        std::printf("\n");
+      };
+      row("... the task's own click (synthetic)", per_own);
+      row("... its worst click per task (synthetic)", per_worst);
     }
     std::fflush(stdout);
   }

@@ -8,6 +8,7 @@
 #include "app/scene_builder.h"
 #include "core/error.h"
 #include "core/sh.h"
+#include "core/random.h"
 #include "render/rasterizer.h"
 
 namespace isegman {
@@ -1422,6 +1423,25 @@ std::vector<EvalScene> make_eval_scenes(const EvalSetOptions& opt) {
   out.push_back(porch(opt));
   out.push_back(workshop(opt));
   return out;
+}
+
+std::vector<Click> task_clicks(const EvalScene& scene, const EvalTaskSpec& task, int count) {
+  std::vector<Click> clicks = {pixel_centre_click(task.x, task.y, 1)};
+  if (count <= 1) return clicks;
+  const Camera& cam = scene.scene.bundle.cameras[size_t(task.camera)];
+  const Image truth = render_selection(scene.scene.bundle.gaussians, cam, demo_object_mask(scene.scene, task.object));
+  std::vector<std::pair<int, int>> on;
+  for (int y = 0; y < truth.height; ++y)
+    for (int x = 0; x < truth.width; ++x)
+      if (truth.at(x, y) > 0.5f) on.push_back({x, y});
+  uint64_t seed = 1469598103934665603ull;  // FNV-1a of the task's name
+  for (char ch : task.name) seed = (seed ^ uint8_t(ch)) * 1099511628211ull;
+  SplitMix64 rng(seed);
+  for (int k = 1; k < count && !on.empty(); ++k) {
+    const auto& [x, y] = on[size_t(rng.uniform() * double(on.size()))];
+    clicks.push_back(pixel_centre_click(x, y, 1));
+  }
+  return clicks;
 }
 
 }  // namespace isegman

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/demo_scene.h"
+#include "core/click.h"
 
 namespace isegman {
 
@@ -40,5 +41,10 @@ std::vector<EvalScene> make_eval_scenes(const EvalSetOptions& options = {});
 // closest to the projection wins. False when no camera has one.
 bool find_click(const DemoScene& scene, int object, const Vec3& anchor, int first_camera, double search_px,
                 int& camera, double& x, double& y);
+
+// A task's click, then `count` - 1 more drawn anywhere on the object as its clicked camera
+// shows it (its rendered truth mask > 0.5), as users click: near edges, on thin parts.
+// The draws are fixed per task (seeded by its name).
+std::vector<Click> task_clicks(const EvalScene& scene, const EvalTaskSpec& task, int count);
 
 }  // namespace isegman

@@ -83,6 +83,28 @@ int count_views(const Outcome& o, Pred holds) {
 }
 bool accepted(const ViewState& v) { return v.status == ViewStatus::Accepted; }
 
+TEST(HardCases, DrawnClicksLieOnTheObjectAndAreTheSameEveryTime) {
+  // The ablation's --clicks-per-task: the task's own click first, then clicks drawn where
+  // the clicked camera shows the object, fixed per task.
+  const EvalScene* s = nullptr;
+  const EvalTaskSpec& t = task("patio/pole", s);
+  const std::vector<Click> clicks = task_clicks(*s, t, 6), again = task_clicks(*s, t, 6);
+  ASSERT_EQ(clicks.size(), 6u);
+  EXPECT_EQ(clicks[0].x, t.x + 0.5);
+  EXPECT_EQ(clicks[0].y, t.y + 0.5);
+  const Camera& cam = s->scene.bundle.cameras[size_t(t.camera)];
+  const Image truth = render_selection(s->scene.bundle.gaussians, cam, demo_object_mask(s->scene, t.object));
+  int distinct = 0;
+  for (size_t k = 1; k < clicks.size(); ++k) {
+    EXPECT_GT(truth.at(int(clicks[k].x), int(clicks[k].y)), 0.5f) << k;
+    EXPECT_EQ(clicks[k].x, again[k].x);
+    EXPECT_EQ(clicks[k].y, again[k].y);
+    distinct += clicks[k].x != clicks[0].x || clicks[k].y != clicks[0].y;
+  }
+  EXPECT_GE(distinct, 4);
+  EXPECT_EQ(task_clicks(*s, t, 1).size(), 1u);
+}
+
 TEST(HardCases, FoliageInFrontOfAWallDoesNotSelectTheWallSeenThroughItsGaps) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   const Outcome ours = run("garden/bush", SessionOptions());
