@@ -359,7 +359,7 @@ RegisterCommand reg("ablation", "measure the segmentation's design choices on sy
                     "  under --fixtures (default ../shared/fixtures) against their hand-made masks; skipped with a\n"
                     "  message when either folder is missing. --clicks-per-task K (eval set): each synthetic task\n"
                     "  from its own click and K-1 more drawn (fixed per task) on the object in its clicked view;\n"
-                    "  the mean over them, and a row of the worst click per task.",
+                    "  the mean over them, and rows of each task's own click and of its worst click.",
                     run_ablation);
 
 }  // namespace

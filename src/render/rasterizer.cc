@@ -138,8 +138,6 @@ bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera
   return true;
 }
 
-// Tile buffers hold pixel k = row * 16 + column; a row is two groups of 8 lanes.
-
 // Per-entry bookkeeping of a sums pass (TilePass::on_tile): the entry's summed weights
 // over the pixels of `lanes` (8 bits per row group, bit i = column x_base + i), and
 // whether it was blended at an open pixel.

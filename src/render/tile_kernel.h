@@ -35,8 +35,9 @@ inline uint16_t encode_half_width(float e) {
 }
 inline float decode_half_width(uint16_t h) { return h == kWholeImage ? 1e9f : float(h) * kHalfWidthUnit; }
 
-// The tile kernel blends a tile's row in groups of this many pixels (one vector), so a
-// pass over some of a tile's pixels costs the groups they touch.
+// The tile kernel blends a tile's row in groups of this many pixels (one vector; its
+// buffers hold pixel k = row * 16 + column, two groups a row), so a pass over some of a
+// tile's pixels costs the groups they touch.
 constexpr int kLanes = 8;
 
 struct PreparedFrame::Data {

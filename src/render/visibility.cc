@@ -142,13 +142,10 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
           out_groups += out;
         }
       outside[t] = out_groups < in_groups;
-    }
-    for (size_t t = 0; t < tiles; ++t) {
       if (!outside[t]) continue;
       if (flipped.empty()) flipped = *mask;
-      const int x0 = int(t % gx) * kTileSize, y0 = int(t / gx) * kTileSize;
-      for (int y = y0; y < std::min(H, y0 + kTileSize); ++y)
-        for (int x = x0; x < std::min(W, x0 + kTileSize); ++x) {
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
           float& p = flipped.data[size_t(y) * W + x];
           p = p > 0.5f ? 0.f : 1.f;
         }

@@ -8,7 +8,9 @@
 // or below alpha 1/255 wherever they reach) are dropped, which changes no output of any
 // later pass, and every remaining entry keeps its weight summed over its whole tile. A
 // pixel mask then costs a rasterisation only for the tiles it covers partly; the tiles
-// it covers fully are read from those sums.
+// it covers fully are read from those sums. In a partly covered tile a sums pass blends
+// the mask's pixels or the rest of the tile, whichever touches fewer row groups (the rest's
+// sums subtracted from the tile's).
 #pragma once
 
 #include <cstdint>
