@@ -3,6 +3,8 @@
 // logit opacities and spherical-harmonic colour coefficients.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -41,6 +43,9 @@ struct GaussianScene {
   Vec3 position(size_t i) const { return {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]}; }
   Vec3 scale(size_t i) const {  // linear scale (exp of the stored log)
     return {std::exp(scales[3 * i]), std::exp(scales[3 * i + 1]), std::exp(scales[3 * i + 2])};
+  }
+  float largest_scale(size_t i) const {  // linear, of the largest axis
+    return std::exp(std::max({scales[3 * i], scales[3 * i + 1], scales[3 * i + 2]}));
   }
   Quat rotation(size_t i) const {
     return {rotations[4 * i], rotations[4 * i + 1], rotations[4 * i + 2], rotations[4 * i + 3]};

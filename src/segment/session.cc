@@ -255,7 +255,7 @@ std::vector<uint8_t> selection_tiles(const GaussianScene& scene, const SegmentVi
       if (values[i] <= 0) continue;
       const Vec3 p = c.world_to_camera({scene.positions[3 * i], scene.positions[3 * i + 1], scene.positions[3 * i + 2]});
       if (p.z <= 0.2) continue;  // the rasteriser's near plane culls it
-      const double s = std::exp(std::max({scene.scales[3 * i], scene.scales[3 * i + 1], scene.scales[3 * i + 2]}));
+      const double s = scene.largest_scale(i);
       const double u = c.fx * p.x / p.z + c.cx, v = c.fy * p.y / p.z + c.cy;
       const double r = 3 * s * std::max(c.fx, c.fy) / p.z + 2;
       b.x0 = std::min(b.x0, u - r);

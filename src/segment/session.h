@@ -10,13 +10,13 @@
 #include "models/sam.h"
 #include "segment/background_gate.h"
 #include "segment/coherence.h"
-#include "segment/whole_islands.h"
 #include "segment/depth_layers.h"
 #include "segment/live_selection.h"
 #include "segment/propagation.h"
 #include "segment/see_through.h"
 #include "segment/views.h"
 #include "segment/votes.h"
+#include "segment/whole_islands.h"
 
 namespace isegman::segment {
 

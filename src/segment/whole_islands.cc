@@ -8,10 +8,6 @@ namespace isegman::segment {
 
 namespace {
 
-float largest_scale(const GaussianScene& scene, size_t i) {
-  return std::exp(std::max({scene.scales[3 * i], scene.scales[3 * i + 1], scene.scales[3 * i + 2]}));
-}
-
 uint32_t root(std::vector<uint32_t>& parent, uint32_t a) {
   while (parent[a] != a) a = parent[a] = parent[parent[a]];
   return a;
@@ -30,12 +26,12 @@ size_t drop_whole_islands(std::vector<bool>& selection, const VoteAccumulator& v
   std::vector<float> scales;
   for (size_t j = 0; j < selection.size(); ++j) {
     if (!selection[j]) continue;
-    scales.push_back(largest_scale(scene, j));
+    scales.push_back(scene.largest_scale(j));
     if (!votes.selects(j, tau, min_fixed, centre)) dependent.push_back(uint32_t(j));
   }
-  // Nothing selected on its own votes: no part to grow from, and nothing is dropped.
-  if (dependent.size() == scales.size()) return 0;
-  if (dependent.empty()) return 0;
+  // Nothing depends on the rule, or nothing is selected on its own votes (no part to grow
+  // from): nothing is dropped.
+  if (dependent.empty() || dependent.size() == scales.size()) return 0;
   const size_t q = std::min(scales.size() - 1, size_t(0.95 * double(scales.size())));
   std::nth_element(scales.begin(), scales.begin() + std::ptrdiff_t(q), scales.end());
   const double reach = scales[q];
@@ -50,11 +46,11 @@ size_t drop_whole_islands(std::vector<bool>& selection, const VoteAccumulator& v
   };
   for (size_t a = 0; a < dependent.size(); ++a) {
     const uint32_t g = dependent[a];
-    const double sg = largest_scale(scene, g);
+    const double sg = scene.largest_scale(g);
     const Vec3 p = scene.position(g);
     for (uint32_t j : index.within(p, o.link_sigmas * (sg + reach))) {
       if (j == g || !selection[j]) continue;
-      const double link = o.link_sigmas * (sg + largest_scale(scene, j));
+      const double link = o.link_sigmas * (sg + scene.largest_scale(j));
       const Vec3 d = scene.position(j) - p;
       if (d.x * d.x + d.y * d.y + d.z * d.z > link * link) continue;
       const long b = slot(j);
@@ -62,10 +58,7 @@ size_t drop_whole_islands(std::vector<bool>& selection, const VoteAccumulator& v
         anchored[a] = 1;
       } else {
         const uint32_t ra = root(parent, uint32_t(a)), rb = root(parent, uint32_t(b));
-        if (ra != rb) {
-          parent[ra] = rb;
-          anchored[rb] |= anchored[ra];
-        }
+        if (ra != rb) parent[ra] = rb;  // anchors reach their set's root after the loop
       }
     }
   }
