@@ -54,8 +54,9 @@ EditState::EditState(GaussianScene scene) : session_(std::move(scene)) {
   fingerprint_ = session_.scene().fingerprint();
 }
 
-GaussianScene EditState::scene_copy() const {
+GaussianScene EditState::scene_copy(uint64_t& fingerprint) const {
   std::shared_lock<std::shared_mutex> lock(mu_);
+  fingerprint = fingerprint_;
   return session_.scene();
 }
 

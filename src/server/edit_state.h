@@ -87,7 +87,9 @@ class EditState {
  public:
   explicit EditState(GaussianScene scene);
 
-  GaussianScene scene_copy() const;
+  // The scene and its fingerprint, read under one lock: an edit landing between two
+  // separate reads would pair one scene with another's fingerprint.
+  GaussianScene scene_copy(uint64_t& fingerprint) const;
   uint64_t fingerprint() const;
   uint64_t revision() const { return revision_.load(); }
   void bounds(Vec3& lo, Vec3& hi, int& sh_degree) const;

@@ -128,9 +128,9 @@ void SegmentationJobs::set_state(const std::string& state, const std::string& me
   log_.bump();
 }
 
-std::shared_ptr<const SceneBundle> SegmentationJobs::snapshot() const {
+std::shared_ptr<const SceneBundle> SegmentationJobs::snapshot(uint64_t& fingerprint) const {
   auto b = std::make_shared<SceneBundle>(bundle_);
-  b->gaussians = scene_.scene_copy();
+  b->gaussians = scene_.scene_copy(fingerprint);
   return b;
 }
 
@@ -154,9 +154,10 @@ void SegmentationJobs::prepare_job(const JobRunner::Report& report) {
     sam_ = std::make_shared<const models::SamModel>(enc.string(), dec.string(), options_.threads);
     seg_ = std::make_unique<Segmentation>(sam_, options_.session, options_.views, options_.settings);
     seg_->set_kept_budget(size_t(options_.kept_bytes));
-    std::shared_ptr<const SceneBundle> snap = snapshot();
+    uint64_t fingerprint = 0;
+    std::shared_ptr<const SceneBundle> snap = snapshot(fingerprint);
     set_state("preparing", "rendering views and computing SAM embeddings");
-    seg_->open(snap, snap->gaussians.fingerprint(), [&](int done, int total, const std::string& line) {
+    seg_->open(snap, fingerprint, [&](int done, int total, const std::string& line) {
       report(done, total, line);
       std::lock_guard<std::mutex> lock(status_mu_);
       published_.message = "preparing views: " + line;
@@ -181,8 +182,9 @@ void SegmentationJobs::ensure_current(const Progress& progress) {
   log_.note(prepared ? "the scene was edited: segmenting the edited scene (its views were prepared; clicks start over)"
                      : "the scene was edited: segmenting the edited scene (changed views re-rendered, clicks start over)");
   set_state("preparing", "updating the views of the edited scene");
-  std::shared_ptr<const SceneBundle> snap = snapshot();
-  seg_->open(snap, snap->gaussians.fingerprint(), progress);
+  uint64_t fingerprint = 0;
+  std::shared_ptr<const SceneBundle> snap = snapshot(fingerprint);
+  seg_->open(snap, fingerprint, progress);
   if (!prepared && seg_->last_reused() + seg_->last_rebuilt() > 0)
     log_.note("views: " + std::to_string(seg_->last_reused()) + " kept, " + std::to_string(seg_->last_rebuilt()) +
               " re-rendered");
@@ -354,8 +356,11 @@ void SegmentationJobs::scene_changed() {
       const auto t0 = std::chrono::steady_clock::now();
       // Left for another scene (undo, another edit) meanwhile: stop after this view.
       struct Left {};
+      uint64_t copied = 0;
+      std::shared_ptr<const SceneBundle> snap = snapshot(copied);
+      if (copied != now) return;  // edited again meanwhile: that edit's own job prepares its views
       try {
-        seg_->prepare(snapshot(), now, [&](int done, int total, const std::string& line) {
+        seg_->prepare(snap, copied, [&](int done, int total, const std::string& line) {
           report(done, total, line);
           if (scene_.fingerprint() != now) throw Left{};
         });

@@ -99,7 +99,8 @@ class SegmentationJobs {
 
  private:
   using Progress = Segmentation::Progress;
-  std::shared_ptr<const SceneBundle> snapshot() const;
+  // A copy of the scene as it is now, with its fingerprint (read together).
+  std::shared_ptr<const SceneBundle> snapshot(uint64_t& fingerprint) const;
   void prepare_job(const JobRunner::Report& report);
   void ensure_current(const Progress& progress);       // seg_mu_ held
   // Returns false when the selection should have been applied but the scene had changed.

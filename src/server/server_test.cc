@@ -573,14 +573,17 @@ TEST(ServerApi, ClickSelectsTheObjectWithSam) {
   // Remove again and click on the edited scene (a new click sequence on it); undoing every
   // edit brings the first scene's segmentation back: not "scene edited", its click undoable.
   s.post_json("/api/edit/redo", "");
-  s.post_json("/api/click", click.dump(), 202);
+  const uint64_t second = s.post_json("/api/click", click.dump(), 202)["job"].get<uint64_t>();
   ASSERT_TRUE(s.app->jobs().wait_idle(120));
+  // Should this click go unrecorded, its job and the log say why.
+  const json second_job = s.get_json("/api/jobs/" + std::to_string(second));
+  EXPECT_EQ(second_job["state"], "done") << second_job.dump();
   st = s.get_json("/api/status");
   EXPECT_FALSE(st["segmentation"]["stale"].get<bool>());
   EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 1);
   // One history: [click, remove, click]; the click's selection is part of its entry.
   st = s.get_json("/api/status");
-  ASSERT_EQ(st["history"]["entries"].size(), 3u) << st["history"].dump();
+  ASSERT_EQ(st["history"]["entries"].size(), 3u) << st["history"].dump() << "\n" << st["log"].dump();
   EXPECT_EQ(st["history"]["entries"][0]["kind"], "click");
   EXPECT_EQ(st["history"]["entries"][1]["kind"], "edit");
   EXPECT_EQ(st["history"]["entries"][2]["kind"], "click");
