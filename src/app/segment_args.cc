@@ -49,6 +49,9 @@ const char* const kSegmentOptionsHelp =
     "                                the rest of that candidate (the vote keeps the intersection)\n"
     "  --selection-prompts N         rounds prompting views no click reached (default 2, 0 = off)\n"
     "  --hidden-fallback             send a hidden click along the whole epipolar line\n"
+    "  --interior-anchor             propagate a positive click from the interior of the surface it hit\n"
+    "                                in its view's mask (a thin post's middle, not its edge; off: it\n"
+    "                                measured neutral over clicks drawn anywhere on the objects)\n"
     "  --no-depth-agreement          search features around a click's reprojection even where the\n"
     "                                view's depth there agrees with the clicked point's\n"
     "  --sam-negatives               give negative clicks to SAM instead of cutting their region\n"
@@ -66,7 +69,7 @@ const std::set<std::string>& segment_value_flags() {
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "keep-whole-islands",
-                                          "candidate-choice", "no-granularity-consensus", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement",
+                                          "candidate-choice", "no-granularity-consensus", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives"};
   return f;
 }
@@ -106,6 +109,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.object_prior = !args.has("no-object-prior");
   s.session.propagation.hidden_fallback = args.has("hidden-fallback");
   if (args.has("no-depth-agreement")) s.session.propagation.depth_agreement = 0;
+  s.session.interior_anchor.enabled = args.has("interior-anchor");
   s.session.negative_regions = !args.has("sam-negatives");
   s.session.selection_prompt_rounds = args.get_int("selection-prompts", 2);
   if (s.session.selection_prompt_rounds < 0 || s.session.selection_prompt_rounds > 10)

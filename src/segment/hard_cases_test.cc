@@ -54,10 +54,13 @@ struct Outcome {
   std::unique_ptr<Session> session;
 };
 
-Outcome run(const std::string& name, const SessionOptions& so, std::vector<Click> extra = {}, int width = kSmall) {
+// The task segmented from its own click (or from its `drawn`-th click of task_clicks), then
+// `extra` clicks.
+Outcome run(const std::string& name, const SessionOptions& so, std::vector<Click> extra = {}, int width = kSmall,
+            int drawn = 0) {
   const EvalScene* s = nullptr;
   const EvalTaskSpec& t = task(name, s, width);
-  std::vector<Click> clicks{pixel_centre_click(t.x, t.y, 1)};
+  std::vector<Click> clicks{task_clicks(*s, t, drawn + 1)[size_t(drawn)]};
   clicks.insert(clicks.end(), extra.begin(), extra.end());
   Outcome o;
   o.session = segment_from_prompts(s->scene.bundle, t.camera, clicks, sam_or_null(), so, view_options(), "all");
@@ -218,6 +221,24 @@ TEST(HardCases, AClickOnAThinPoleStaysOnItWhereTheDepthAgrees) {
               accepted_clicked(ours), 100 * ours.iou, accepted_clicked(without), 100 * without.iou);
   EXPECT_GE(accepted_clicked(ours), accepted_clicked(without) + 2);
   EXPECT_GT(ours.iou, 0.85);
+}
+
+TEST(HardCases, AClickNearAThinPostsEdgeReachesOtherViewsOnThePost) {
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // The porch post's second drawn click lies right of the post's middle: reprojected as it
+  // is, it lands on the post's edge in most views, where SAM's masks take in the wall beside
+  // the post (and hold the post, so inspection accepts them). From the interior of the
+  // post's mask in the clicked view it lands on the post's middle (an option: README).
+  SessionOptions anchored;
+  anchored.interior_anchor.enabled = true;
+  const Outcome ours = run("porch/post", anchored, {}, kAblation, 2);
+  const Outcome without = run("porch/post", SessionOptions(), {}, kAblation, 2);
+  std::printf("[ hard ] porch/post, drawn click: IoU %.1f%% (%zu selected, %zu wall or floor); propagated from the "
+              "click itself %.1f%% (%zu selected, %zu wall or floor)\n",
+              100 * ours.iou, ours.selected, ours.scenery, 100 * without.iou, without.selected, without.scenery);
+  EXPECT_GT(ours.iou, 0.9);
+  EXPECT_GT(ours.iou, without.iou + 0.1);
+  EXPECT_LT(ours.scenery, without.scenery / 2);
 }
 
 // A task with the default options and with `without` (named `what`); prints both.

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "models/onnx_graph.h"
+#include "segment/interior.h"
 
 namespace isegman::segment {
 
@@ -352,38 +353,23 @@ void take_candidate(ViewState& vs, const models::SegmentResult& r, int c) {
 bool prompt_from_coverage(const Image& cov, std::vector<models::Click>& prompt) {
   const int w = cov.width, h = cov.height;
   int x0 = w, y0 = h, x1 = -1, y1 = -1;
-  std::vector<int> dist(size_t(w) * h, 0);
-  const int inf = 1 << 20;
+  std::vector<uint8_t> inside(size_t(w) * h, 0);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
       if (cov.at(x, y) > 0.5f) {
-        dist[size_t(y) * w + x] = inf;
+        inside[size_t(y) * w + x] = 1;
         x0 = std::min(x0, x);
         y0 = std::min(y0, y);
         x1 = std::max(x1, x);
         y1 = std::max(y1, y);
       }
   if (x1 < 0) return false;
-  auto at = [&](int x, int y) -> int& { return dist[size_t(y) * w + x]; };
-  for (int y = 0; y < h; ++y)  // two-pass chamfer (3-4) distance, image border counts as outside
-    for (int x = 0; x < w; ++x) {
-      int& d = at(x, y);
-      if (!d) continue;
-      d = std::min(d, (x > 0 ? at(x - 1, y) : 0) + 3);
-      d = std::min(d, (y > 0 ? at(x, y - 1) : 0) + 3);
-      d = std::min(d, (x > 0 && y > 0 ? at(x - 1, y - 1) : 0) + 4);
-      d = std::min(d, (x + 1 < w && y > 0 ? at(x + 1, y - 1) : 0) + 4);
-    }
+  const std::vector<int> dist = chamfer_distance(inside, w, h, true);
   int bx = 0, by = 0, best = -1;
-  for (int y = h - 1; y >= 0; --y)
+  for (int y = h - 1; y >= 0; --y)  // the last of the farthest in the backward scan
     for (int x = w - 1; x >= 0; --x) {
-      int& d = at(x, y);
-      if (!d) continue;
-      d = std::min(d, (x + 1 < w ? at(x + 1, y) : 0) + 3);
-      d = std::min(d, (y + 1 < h ? at(x, y + 1) : 0) + 3);
-      d = std::min(d, (x + 1 < w && y + 1 < h ? at(x + 1, y + 1) : 0) + 4);
-      d = std::min(d, (x > 0 && y + 1 < h ? at(x - 1, y + 1) : 0) + 4);
-      if (d >= best) {
+      const int d = dist[size_t(y) * w + x];
+      if (d && d >= best) {
         best = d;
         bx = x;
         by = y;
@@ -403,20 +389,30 @@ RoundReport Session::run_round(State& next, const State& prev) {
   RoundReport rep;
   const size_t V = views_.size();
   const SessionOptions& o = options_;
-  // 1. Propagate every click to every view (EIP).
+  // 1. Propagate every click to every view (EIP), each from `sources` (the user's clicks,
+  //    or their interior anchors once the clicked views are segmented).
   auto t0 = Clock::now();
   std::vector<ViewState> fresh(V);
-  for (size_t k = 0; k < V; ++k) {
-    for (const UserClick& uc : next.clicks) {
+  std::vector<Click> sources;
+  for (const UserClick& uc : next.clicks) sources.push_back(uc.click);
+  auto propagate_into = [&](size_t k) {
+    fresh[k].clicks.clear();
+    fresh[k].not_sent.clear();
+    for (size_t i = 0; i < next.clicks.size(); ++i) {
+      const UserClick& uc = next.clicks[i];
       if (uc.view == int(k)) {
         fresh[k].clicks.push_back(uc.click);
         continue;
       }
-      Propagated p = propagate(views_[size_t(uc.view)], uc.click, views_[k], o.propagation, scene_extent_);
+      Propagated p = propagate(views_[size_t(uc.view)], sources[i], views_[k], o.propagation, scene_extent_);
+      // Where the anchor is hidden or out of frame, the clicked point itself may still show.
+      if (!p.sent && (sources[i].x != uc.click.x || sources[i].y != uc.click.y))
+        p = propagate(views_[size_t(uc.view)], uc.click, views_[k], o.propagation, scene_extent_);
       if (p.sent) fresh[k].clicks.push_back(p.click);
       else fresh[k].not_sent.push_back(p.reason);
     }
-  }
+  };
+  for (size_t k = 0; k < V; ++k) propagate_into(k);
   rep.ms_propagation = ms_since(t0);
 
   // 2. SAM in every view that has a positive click.
@@ -445,11 +441,11 @@ RoundReport Session::run_round(State& next, const State& prev) {
       ++segmented;
     });
   };
-  {
+  auto segment_views = [&](const std::vector<size_t>& subset) {
     std::vector<size_t> which, which_neg;
     std::vector<std::vector<models::Click>> prompts, prompts_neg;
     std::vector<const std::vector<float>*> previous;
-    for (size_t k = 0; k < V; ++k) {
+    for (size_t k : subset) {
       ViewState& vs = fresh[k];
       const bool positive = std::any_of(vs.clicks.begin(), vs.clicks.end(), [](const Click& c) { return c.label == 1; });
       if (!positive) {
@@ -495,8 +491,56 @@ RoundReport Session::run_round(State& next, const State& prev) {
     }
     decode_views(which, prompts, previous, results);
     decode_views(which_neg, prompts_neg, std::vector<const std::vector<float>*>(which_neg.size(), nullptr), negatives);
+  };
+  // SAM's choice in a clicked view, or the object candidate the prior prefers to it.
+  auto clicked_candidate = [&](const models::SegmentResult& r, const ViewState& vs) {
+    return o.object_prior ? object_candidate(r, vs.clicks, o.min_object_score, o.min_surroundings_share) : r.mask_index;
+  };
+  std::vector<size_t> clicked, others;
+  double ms_repropagation = 0;
+  {
+    std::vector<uint8_t> is_clicked(V, 0);
+    for (const UserClick& uc : next.clicks) is_clicked[size_t(uc.view)] |= uc.click.label == 1;
+    for (size_t k = 0; k < V; ++k) (is_clicked[k] && o.interior_anchor.enabled ? clicked : others).push_back(k);
   }
-  rep.ms_sam = ms_since(t0);
+  if (!clicked.empty()) {
+    // The clicked views first: each positive click is propagated from the interior of the
+    // surface it hit in its view's mask (interior.h), not from its edge.
+    segment_views(clicked);
+    bool moved = false;
+    for (size_t i = 0; i < next.clicks.size(); ++i) {
+      const UserClick& uc = next.clicks[i];
+      const size_t k = size_t(uc.view);
+      if (uc.click.label != 1 || !results[k]) continue;
+      ViewState chosen = fresh[k];
+      chosen.sam_negative = negatives[k];
+      const models::SegmentResult& r = *results[k];
+      take_candidate(chosen, r, clicked_candidate(r, chosen));
+      const SegmentView& view = views_[k];
+      Image surface = mask_image(chosen.mask, view.camera.width, view.camera.height);
+      // Within the finest candidate that holds the click: SAM's choice at a bicycle's tube is
+      // the whole bicycle with the wall inside its frame, its finest mask the tube.
+      const int cx = int(std::floor(uc.click.x)), cy = int(std::floor(uc.click.y));
+      const Image* finest = nullptr;
+      for (const Image& c : r.candidates)
+        if (c.width == surface.width && c.height == surface.height && cx >= 0 && cy >= 0 && cx < c.width &&
+            cy < c.height && c.at(cx, cy) > 0.5f && (!finest || mask_area(c) < mask_area(*finest)))
+          finest = &c;
+      if (finest)
+        for (size_t p = 0; p < surface.data.size(); ++p)
+          if (!(finest->data[p] > 0.5f)) surface.data[p] = 0.f;
+      sources[i] = interior_anchor(surface, view.depth, view.alpha, uc.click, o.interior_anchor);
+      moved |= sources[i].x != uc.click.x || sources[i].y != uc.click.y;
+    }
+    if (moved) {
+      const auto tp = Clock::now();
+      for (size_t k : others) propagate_into(k);
+      ms_repropagation = ms_since(tp);
+    }
+  }
+  segment_views(others);
+  rep.ms_propagation += ms_repropagation;
+  rep.ms_sam = ms_since(t0) - ms_repropagation;
 
   // 3. Inspection and voting: the latest clicked view first, then the others nearest
   //    first; each mask votes only if it agrees with the selection rendered so far.
@@ -634,10 +678,6 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // the first view votes with (-1: SAM's own choice).
   const std::vector<ViewState> unjudged = fresh;
   size_t first_view = 0;
-  // SAM's choice in a clicked view, or the object candidate the prior prefers to it.
-  auto clicked_candidate = [&](const models::SegmentResult& r, const ViewState& vs) {
-    return o.object_prior ? object_candidate(r, vs.clicks, o.min_object_score, o.min_surroundings_share) : r.mask_index;
-  };
   auto inspect_and_vote = [&](int forced_first) {
     fresh = unjudged;
     acc = VoteAccumulator(scene_.size());

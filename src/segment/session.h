@@ -11,6 +11,7 @@
 #include "segment/background_gate.h"
 #include "segment/coherence.h"
 #include "segment/depth_layers.h"
+#include "segment/interior.h"
 #include "segment/live_selection.h"
 #include "segment/propagation.h"
 #include "segment/see_through.h"
@@ -22,6 +23,11 @@ namespace isegman::segment {
 
 struct SessionOptions {
   PropagationOptions propagation;
+  // A positive click reaches other views from the interior of the surface it hit in its own
+  // view's mask (interior.h), so a click near a thin object's edge does not land beside it.
+  // Off by default: over clicks drawn anywhere on the objects it fixed the thin post and the
+  // bicycle and lost as much elsewhere, where a shift of a few pixels changes SAM's masks (README).
+  AnchorOptions interior_anchor;
   double tau = 0.8;                // select P/A > tau
   double min_total_weight = 0.05;  // ignore Gaussians with less total blending weight
   bool inspection = true;          // IIM on/off
