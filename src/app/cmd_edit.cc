@@ -228,6 +228,7 @@ Selection selection_from(const Args& a, const GaussianScene& scene, const std::v
     const std::string path = a.get("selection");
     Selection file = read_selection(path);
     file.check_matches(scene, path);
+    file.scene_fingerprint = scene.fingerprint();  // a file saved with the legacy fingerprint joins the others
     shapes = unite(shapes, file);
     inputs.push_back(path);
     have_base = true;

@@ -1,6 +1,7 @@
 #include "core/scene.h"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "core/error.h"
@@ -121,9 +122,48 @@ void fnv(uint64_t& h, const void* data, size_t bytes) {
     h *= 1099511628211ull;
   }
 }
+
+// xxHash64's primes and round (acc = rotl(acc + word * P2, 31) * P1) in four independent
+// lanes, so the multiplies overlap; the lanes, the length and the tail bytes are folded in
+// after, then mixed by SplitMix64's finaliser.
+constexpr uint64_t kP1 = 0x9E3779B185EBCA87ull, kP2 = 0xC2B2AE3D27D4EB4Full;
+uint64_t rotl(uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
+uint64_t finalise(uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+void hash_words(uint64_t& h, const void* data, size_t bytes) {
+  const auto* p = static_cast<const uint8_t*>(data);
+  uint64_t lane[4] = {h + kP1 + kP2, h + kP2, h, h - kP1};
+  size_t i = 0;
+  for (; i + 32 <= bytes; i += 32)
+    for (int j = 0; j < 4; ++j) {
+      uint64_t w;
+      std::memcpy(&w, p + i + 8 * j, 8);
+      lane[j] = rotl(lane[j] + w * kP2, 31) * kP1;
+    }
+  uint64_t out = h ^ (bytes * kP1);
+  for (int j = 0; j < 4; ++j) out = rotl(out ^ lane[j], 27) * kP1 + kP2;
+  for (; i < bytes; ++i) out = (out ^ p[i]) * 1099511628211ull;
+  h = finalise(out);
+}
 }  // namespace
 
 uint64_t GaussianScene::fingerprint() const {
+  uint64_t h = 1469598103934665603ull;
+  const uint64_t n = size();
+  hash_words(h, &n, sizeof n);
+  hash_words(h, &sh_degree, sizeof sh_degree);
+  hash_words(h, positions.data(), positions.size() * 4);
+  hash_words(h, sh.data(), sh.size() * 4);
+  hash_words(h, opacity.data(), opacity.size() * 4);
+  hash_words(h, scales.data(), scales.size() * 4);
+  hash_words(h, rotations.data(), rotations.size() * 4);
+  return h;
+}
+
+uint64_t GaussianScene::legacy_fingerprint() const {
   uint64_t h = 1469598103934665603ull;
   uint64_t n = size();
   fnv(h, &n, sizeof n);

@@ -85,7 +85,8 @@ void Selection::check_matches(const GaussianScene& scene, const std::string& sou
   if (gaussian_count != scene.size())
     throw Error(source, "selection was made for a scene of " + std::to_string(gaussian_count) +
                             " Gaussians, this scene has " + std::to_string(scene.size()));
-  if (scene_fingerprint != scene.fingerprint())
+  // Selection files saved before 2026-11-26 carry the scene's legacy fingerprint.
+  if (scene_fingerprint != scene.fingerprint() && scene_fingerprint != scene.legacy_fingerprint())
     throw Error(source, "selection was made for a different scene (fingerprint mismatch: the scene's "
                         "Gaussians changed since the selection was made)");
 }

@@ -7,7 +7,8 @@
 //   8       4     uint32 version = 1
 //   12      4     uint32 flags: bit 0 = scores present
 //   16      8     uint64 gaussian_count N
-//   24      8     uint64 scene_fingerprint (GaussianScene::fingerprint() of the scene)
+//   24      8     uint64 scene_fingerprint (GaussianScene::fingerprint() of the scene; files saved
+//                  before 2026-11-26 carry its legacy_fingerprint(), also accepted)
 //   32      8     uint64 selected count (number of true bits; checked on read)
 //   40      ceil(N/8)  mask bits, Gaussian i in byte i/8, bit i%8 (LSB first);
 //                      bits past N must be zero

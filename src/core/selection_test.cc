@@ -70,6 +70,17 @@ TEST(Selection, DetectsOtherScene) {
   }
 }
 
+TEST(Selection, AcceptsAFileSavedWithTheLegacyFingerprint) {
+  // Selection files saved before the fingerprint changed carry the FNV-1a one.
+  GaussianScene scene = scene_of(9);
+  Selection s = Selection::all_of(scene);
+  s.scene_fingerprint = scene.legacy_fingerprint();
+  EXPECT_NO_THROW(s.check_matches(scene, "old.isel"));
+  GaussianScene other = scene;
+  other.opacity[2] = 1.f;
+  EXPECT_THROW(s.check_matches(other, "old.isel"), Error);
+}
+
 TEST(Selection, RejectsCorruptFiles) {
   GaussianScene scene = scene_of(10);
   Selection s = Selection::none_of(scene);
