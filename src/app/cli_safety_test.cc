@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "app/demo_scene.h"
+#include "core/selection.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
@@ -117,6 +118,35 @@ TEST(CliSafety, RendersNeverReplaceThePhotos) {
   EXPECT_EQ(s.status, 1) << s.output;
   EXPECT_NE(s.output.find("refusing to overwrite an input"), std::string::npos) << s.output;
   EXPECT_EQ(slurp(images + "/a.png"), before);
+}
+
+TEST(CliSafety, SelectionFilesSavedWithTheLegacyFingerprintStillWork) {
+  // Selection files saved before the scene fingerprint changed carry the FNV-1a one: they
+  // still select, alone or with a shape, and the scene is edited as they say.
+  const std::string root = make_scene("legacy", {"a", "b", "c"});
+  const std::string scene = root + "/scene";
+  const GaussianScene g = load_scene(scene).gaussians;
+  std::vector<bool> half(g.size(), false);
+  for (size_t i = 0; i < g.size() / 2; ++i) half[i] = true;
+  Selection old = Selection::from_mask(g, half);
+  old.scene_fingerprint = g.legacy_fingerprint();
+  write_selection(root + "/old.isel", old);
+  CliRun r = isegman("edit " + q(scene) + " --selection " + q(root + "/old.isel") + " remove --out " + q(root + "/x.ply"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(load_scene(root + "/x.ply").gaussians.size(), g.size() - g.size() / 2);
+  // With a box far from the scene: the union is the file's half.
+  r = isegman("edit " + q(scene) + " --selection " + q(root + "/old.isel") + " --box 50,50,50,51,51,51 remove --out " +
+              q(root + "/y.ply"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(load_scene(root + "/y.ply").gaussians.size(), g.size() - g.size() / 2);
+  // Another scene's file is still refused.
+  Selection other = old;
+  other.scene_fingerprint ^= 1;
+  write_selection(root + "/other.isel", other);
+  r = isegman("edit " + q(scene) + " --selection " + q(root + "/other.isel") + " remove --out " + q(root + "/z.ply"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("different scene"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(root + "/z.ply"));
 }
 
 TEST(CliSafety, OutputsNeverOverlapInputsOrEachOther) {
