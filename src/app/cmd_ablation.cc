@@ -90,6 +90,7 @@ int run_eval_ablation(const Args& args) {
       {"- surroundings' surface", [](segment::SessionOptions& o) { o.background_options.spread_scale = 0; }},
       {"- whole islands", [](segment::SessionOptions& o) { o.whole_islands.enabled = false; }},
       {"+ interior anchors", [](segment::SessionOptions& o) { o.interior_anchor.enabled = true; }},
+      {"- whole-mask retry", [](segment::SessionOptions& o) { o.whole_mask_retry = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

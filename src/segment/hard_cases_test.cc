@@ -241,6 +241,25 @@ TEST(HardCases, AClickNearAThinPostsEdgeReachesOtherViewsOnThePost) {
   EXPECT_LT(ours.scenery, without.scenery / 2);
 }
 
+TEST(HardCases, AClickOnAnEdgeLeafSelectsTheHangingPlantNotTheLeafAlone) {
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // The hanging plant's first drawn click is on a leaf at its edge: the clicked view's mask
+  // is the plant, but the leaf is a depth layer of its own and the gate kept only it; every
+  // other view's mask (the plant) held that sliver and was far larger, so inspection dropped
+  // them all. Granularity consensus now also tries the clicked view's whole mask.
+  const Outcome ours = run("study/hanging_plant", SessionOptions(), {}, kAblation, 1);
+  SessionOptions layer_only;
+  layer_only.whole_mask_retry = false;
+  const Outcome without = run("study/hanging_plant", layer_only, {}, kAblation, 1);
+  std::printf("[ hard ] study/hanging_plant, drawn click: IoU %.1f%% (%d views accepted, %zu selected); the clicked "
+              "layer only %.1f%% (%d accepted, %zu selected)\n",
+              100 * ours.iou, count_views(ours, accepted), ours.selected, 100 * without.iou,
+              count_views(without, accepted), without.selected);
+  EXPECT_GT(ours.iou, 0.8);
+  EXPECT_LT(without.iou, 0.3);
+  EXPECT_GE(count_views(ours, accepted), count_views(without, accepted) + 10);
+}
+
 // A task with the default options and with `without` (named `what`); prints both.
 std::pair<Outcome, Outcome> with_and_without(const std::string& name, const SessionOptions& without_options,
                                              const char* what, int width = kAblation) {

@@ -567,6 +567,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
     undecided = false;
   };
   bool first = true;
+  // Set for a granularity consensus try in which the first view's whole mask votes, every
+  // depth layer of it, not the clicked one alone.
+  bool first_whole_mask = false;
 
   // Votes of one view's mask (`mask`: vs.mask as an image at the view's resolution, built
   // once per view for inspection, votes, the background gate and the centre evidence),
@@ -594,7 +597,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         target.seeds.push_back({c.x, c.y});
       }
     }
-    if (o.depth_layers) {
+    if (o.depth_layers && !(first_whole_mask && !selection)) {
       TimeInto timed{part.depth_layers};
       GateReport g = gate_by_depth(scene_, view.camera, vs.positive, vs.neutral, seeds, selection, o.layer_options, o.threads);
       vs.depth_layers = g.layers;
@@ -765,24 +768,45 @@ RoundReport Session::run_round(State& next, const State& prev) {
                 vs.selection_inside >= o.min_selection_inside;
     }
     const models::SegmentResult& r = *results[first_view];
-    if (r.candidates.size() > 1 && larger >= 2 && larger > rep.accepted - 1) {
+    if (larger >= 2 && larger > rep.accepted - 1) {
       const int used = fresh[first_view].candidate;
-      const size_t used_area = mask_area(r.candidates[size_t(used)]);
-      int best = -1, best_accepted = rep.accepted, last = -1;
-      for (size_t c = 0; c < r.candidates.size(); ++c) {
+      const double first_gated = fresh[first_view].gated_share;
+      const size_t used_area = mask_area(r.candidates.empty() ? r.mask : r.candidates[size_t(used)]);
+      // A try: the first view's candidate (-1: as the first pass chose), and whether its
+      // whole mask votes or the clicked depth layer alone. The pass most views accept is kept.
+      struct Try {
+        int candidate = -1;
+        bool whole_mask = false;
+        bool operator!=(const Try& t) const { return candidate != t.candidate || whole_mask != t.whole_mask; }
+      };
+      Try best, last;
+      int best_accepted = rep.accepted;
+      auto attempt = [&](Try t) {
+        first_whole_mask = t.whole_mask;
+        inspect_and_vote(t.candidate);
+        first_whole_mask = false;
+        last = t;
+        if (rep.accepted > best_accepted) {
+          best_accepted = rep.accepted;
+          best = t;
+        }
+      };
+      for (size_t c = 0; c < r.candidates.size() && r.candidates.size() > 1; ++c) {
         if (int(c) == used || r.candidate_scores[c] < o.min_granularity_score ||
             double(mask_area(r.candidates[c])) < o.granularity_growth * double(used_area) ||
             (o.object_prior && surroundings(r.candidates[c], o.min_surroundings_share)))
           continue;
-        inspect_and_vote(int(c));
-        last = int(c);
-        if (rep.accepted > best_accepted) {
-          best_accepted = rep.accepted;
-          best = int(c);
-        }
+        attempt({int(c), false});
       }
-      if (best != last && last >= 0) inspect_and_vote(best);
-      rep.larger_granularity = best >= 0;
+      // The depth gate kept little of the first mask (a leaf at a hanging plant's edge is a
+      // layer of its own): the other views may segment the object that layer is a part of.
+      if (o.depth_layers && o.whole_mask_retry && first_gated >= o.whole_mask_gated_share) attempt({used, true});
+      if (best != last) {
+        first_whole_mask = best.whole_mask;
+        inspect_and_vote(best.candidate);
+        first_whole_mask = false;
+      }
+      rep.larger_granularity = best.candidate >= 0 && best.candidate != used;
     }
   }
 

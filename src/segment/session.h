@@ -66,6 +66,12 @@ struct SessionOptions {
   // area, predicted IoU >= min_granularity_score) and keep the one most views accept.
   bool granularity_consensus = true;
   double granularity_growth = 1.5, min_granularity_score = 0.5;
+  // ... and, when the depth gate made at least whole_mask_gated_share of the first mask's
+  // weight neutral, the first mask voting whole, every depth layer (a leaf at a hanging
+  // plant's edge is a layer of its own). It also lets an occluder that most views mask win
+  // over the sliver of the object behind it (README: the porch's watering can).
+  bool whole_mask_retry = true;
+  double whole_mask_gated_share = 0.5;
   // A view whose mask is a part of a larger candidate of its own (the back of a chair, and the
   // whole chair) does not say whether the part or the whole is meant: what the larger
   // candidates add around the mask (for Gaussians wholly outside it) is left open in that
