@@ -148,32 +148,22 @@ void hash_words(uint64_t& h, const void* data, size_t bytes) {
   for (; i < bytes; ++i) out = (out ^ p[i]) * 1099511628211ull;
   h = finalise(out);
 }
+
+// Folds the count, the SH degree and every parameter array into one hash, in that order.
+template <class Fold>
+uint64_t fold_scene(const GaussianScene& g, Fold fold) {
+  uint64_t h = 1469598103934665603ull;
+  const uint64_t n = g.size();
+  fold(h, &n, sizeof n);
+  fold(h, &g.sh_degree, sizeof g.sh_degree);
+  for (const std::vector<float>* v : {&g.positions, &g.sh, &g.opacity, &g.scales, &g.rotations})
+    fold(h, v->data(), v->size() * 4);
+  return h;
+}
 }  // namespace
 
-uint64_t GaussianScene::fingerprint() const {
-  uint64_t h = 1469598103934665603ull;
-  const uint64_t n = size();
-  hash_words(h, &n, sizeof n);
-  hash_words(h, &sh_degree, sizeof sh_degree);
-  hash_words(h, positions.data(), positions.size() * 4);
-  hash_words(h, sh.data(), sh.size() * 4);
-  hash_words(h, opacity.data(), opacity.size() * 4);
-  hash_words(h, scales.data(), scales.size() * 4);
-  hash_words(h, rotations.data(), rotations.size() * 4);
-  return h;
-}
+uint64_t GaussianScene::fingerprint() const { return fold_scene(*this, hash_words); }
 
-uint64_t GaussianScene::legacy_fingerprint() const {
-  uint64_t h = 1469598103934665603ull;
-  uint64_t n = size();
-  fnv(h, &n, sizeof n);
-  fnv(h, &sh_degree, sizeof sh_degree);
-  fnv(h, positions.data(), positions.size() * 4);
-  fnv(h, sh.data(), sh.size() * 4);
-  fnv(h, opacity.data(), opacity.size() * 4);
-  fnv(h, scales.data(), scales.size() * 4);
-  fnv(h, rotations.data(), rotations.size() * 4);
-  return h;
-}
+uint64_t GaussianScene::legacy_fingerprint() const { return fold_scene(*this, fnv); }
 
 }  // namespace isegman
