@@ -104,7 +104,7 @@ void EditState::record(StepKind kind, const std::string& label) {
   // A new step drops the redo tail (History::push did the same), then the entries follow
   // the history's cap: steps it dropped from the front are dropped here too.
   timeline_.entries.resize(timeline_.cursor);
-  timeline_.entries.push_back({kind, label, session_.scene().fingerprint()});
+  timeline_.entries.push_back({kind, label, fingerprint_});  // current: changed() ran after any edit
   timeline_.cursor = timeline_.entries.size();
   const size_t kept = session_.history().undo_steps();
   if (timeline_.cursor > kept) {
