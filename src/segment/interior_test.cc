@@ -22,6 +22,12 @@ struct PostView {
   }
 };
 
+// The post's middle columns are 109 and 110 (10 px from the outside on either side).
+void expect_post_middle(const Click& c) {
+  EXPECT_GE(c.x, 109.5);
+  EXPECT_LE(c.x, 110.5);
+}
+
 TEST(ChamferDistance, CountsThreePerStepAndTheBorderAsAsked) {
   // A 5 x 5 image all inside, the border outside: 3 on the rim, 6 inside it, 9 at the centre.
   const std::vector<uint8_t> block(25, 1);
@@ -41,11 +47,9 @@ TEST(InteriorAnchor, MovesAnEdgeClickToThePostsMiddle) {
   AnchorOptions o;
   o.radius = 0.06;  // 12 px
   const Click c = interior_anchor(v.mask, v.depth, v.alpha, {118.5, 50.5, 1}, o);
-  // The post's middle columns are 109 and 110 (10 px from the outside on either side); the
-  // anchor moves along the row to the nearer one.
+  // The anchor moves along the row to the nearer of the post's middle columns.
   EXPECT_DOUBLE_EQ(c.y, 50.5);
-  EXPECT_GE(c.x, 109.5);
-  EXPECT_LE(c.x, 110.5);
+  expect_post_middle(c);
   EXPECT_EQ(c.label, 1);
 }
 
@@ -83,8 +87,7 @@ TEST(InteriorAnchor, IgnoresWhatTheMaskShowsAtAnotherDepth) {
   AnchorOptions o;
   o.radius = 0.1;  // 20 px: the wall's strip of the mask is within reach
   const Click c = interior_anchor(v.mask, v.depth, v.alpha, {118.5, 50.5, 1}, o);
-  EXPECT_GE(c.x, 109.5);
-  EXPECT_LE(c.x, 110.5);
+  expect_post_middle(c);
 }
 
 TEST(InteriorAnchor, AnEdgePixelBlendingThePostAndTheWallStillFindsThePost) {
@@ -95,8 +98,7 @@ TEST(InteriorAnchor, AnEdgePixelBlendingThePostAndTheWallStillFindsThePost) {
   AnchorOptions o;
   o.radius = 0.06;
   const Click c = interior_anchor(v.mask, v.depth, v.alpha, {119.5, 50.5, 1}, o);
-  EXPECT_GE(c.x, 109.5);
-  EXPECT_LE(c.x, 110.5);
+  expect_post_middle(c);
   // A wall 1.5 % farther than the clicked pixel is outside the tight farther band.
   PostView far;
   for (int y = 0; y < 100; ++y)
@@ -105,8 +107,7 @@ TEST(InteriorAnchor, AnEdgePixelBlendingThePostAndTheWallStillFindsThePost) {
       far.depth.at(x, y) = 2.03f;
     }
   const Click d = interior_anchor(far.mask, far.depth, far.alpha, {118.5, 50.5, 1}, o);
-  EXPECT_GE(d.x, 109.5);
-  EXPECT_LE(d.x, 110.5);
+  expect_post_middle(d);
 }
 
 TEST(InteriorAnchor, AnObjectLeavingTheFrameDoesNotEndAtTheBorder) {
@@ -117,8 +118,7 @@ TEST(InteriorAnchor, AnObjectLeavingTheFrameDoesNotEndAtTheBorder) {
   o.radius = 0.06;
   const Click c = interior_anchor(v.mask, v.depth, v.alpha, {118.5, 0.5, 1}, o);
   EXPECT_DOUBLE_EQ(c.y, 0.5);
-  EXPECT_GE(c.x, 109.5);
-  EXPECT_LE(c.x, 110.5);
+  expect_post_middle(c);
 }
 
 }  // namespace
