@@ -52,13 +52,17 @@ Selection Selection::all_of(const GaussianScene& scene) {
 }
 
 Selection Selection::from_mask(const GaussianScene& scene, std::vector<bool> mask) {
+  return from_mask(scene, std::move(mask), scene.fingerprint());
+}
+
+Selection Selection::from_mask(const GaussianScene& scene, std::vector<bool> mask, uint64_t scene_fingerprint) {
   if (mask.size() != scene.size())
     throw Error("selection", "mask has " + std::to_string(mask.size()) + " flags but the scene has " +
                                  std::to_string(scene.size()) + " Gaussians");
   Selection s;
   s.gaussian_count = scene.size();
   s.mask = std::move(mask);
-  s.scene_fingerprint = scene.fingerprint();
+  s.scene_fingerprint = scene_fingerprint;
   return s;
 }
 
@@ -81,12 +85,16 @@ void Selection::validate(const std::string& source) const {
 }
 
 void Selection::check_matches(const GaussianScene& scene, const std::string& source) const {
+  check_matches(scene, scene.fingerprint(), source);
+}
+
+void Selection::check_matches(const GaussianScene& scene, uint64_t current_fingerprint, const std::string& source) const {
   validate(source);
   if (gaussian_count != scene.size())
     throw Error(source, "selection was made for a scene of " + std::to_string(gaussian_count) +
                             " Gaussians, this scene has " + std::to_string(scene.size()));
   // Selection files saved before 2026-11-26 carry the scene's legacy fingerprint.
-  if (scene_fingerprint != scene.fingerprint() && scene_fingerprint != scene.legacy_fingerprint())
+  if (scene_fingerprint != current_fingerprint && scene_fingerprint != scene.legacy_fingerprint())
     throw Error(source, "selection was made for a different scene (fingerprint mismatch: the scene's "
                         "Gaussians changed since the selection was made)");
 }

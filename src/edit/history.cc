@@ -62,10 +62,14 @@ const Delta& History::pop_redo() {
 }
 
 EditSession::EditSession(GaussianScene scene, HistoryLimits limits)
-    : scene_(std::move(scene)), mask_(scene_.size(), false), history_(limits) {}
+    : scene_(std::move(scene)), fingerprint_(scene_.fingerprint()), mask_(scene_.size(), false), history_(limits) {}
+
+void EditSession::step_done(const Delta& d) {
+  if (!d.modified.empty() || !d.removed.empty() || d.appended.size() > 0) fingerprint_ = scene_.fingerprint();
+}
 
 void EditSession::select(const Selection& sel, const std::string& label) {
-  sel.check_matches(scene_, label);
+  sel.check_matches(scene_, fingerprint_, label);
   Delta d;
   d.label = label;
   for (size_t i = 0; i < mask_.size(); ++i)
@@ -76,6 +80,7 @@ void EditSession::select(const Selection& sel, const std::string& label) {
 void EditSession::apply(Delta delta) {
   notice_.clear();
   apply_delta(delta, scene_, mask_);
+  step_done(delta);
   notice_ = history_.push(std::move(delta));
 }
 
@@ -84,6 +89,7 @@ std::string EditSession::undo() {
   if (!history_.can_undo()) throw Error("undo", "nothing to undo");
   const Delta& d = history_.pop_undo();
   revert_delta(d, scene_, mask_);
+  step_done(d);
   return d.label;
 }
 
@@ -92,6 +98,7 @@ std::string EditSession::redo() {
   if (!history_.can_redo()) throw Error("redo", "nothing to redo");
   const Delta& d = history_.pop_redo();
   apply_delta(d, scene_, mask_);
+  step_done(d);
   return d.label;
 }
 

@@ -58,6 +58,7 @@ TEST(History, UndoOfAnySequenceRestoresTheSceneBitExactly) {
     const int steps = 25;
     for (int i = 0; i < steps; ++i) {
       random_step(e, rng);
+      ASSERT_EQ(e.fingerprint(), e.scene().fingerprint()) << "seed " << seed << " step " << i;
       if (e.history().undo_steps() != states.size()) continue;  // a step that did nothing
       states.push_back(e.scene());
       masks.push_back(e.mask());
@@ -68,6 +69,7 @@ TEST(History, UndoOfAnySequenceRestoresTheSceneBitExactly) {
       e.undo();
       ASSERT_TRUE(same_scene(e.scene(), states[i - 1])) << "seed " << seed << " step " << i;
       ASSERT_EQ(e.mask(), masks[i - 1]);
+      ASSERT_EQ(e.fingerprint(), e.scene().fingerprint()) << "undo seed " << seed << " step " << i;
     }
     EXPECT_EQ(e.scene().fingerprint(), original.fingerprint());
     EXPECT_THROW(e.undo(), Error);
@@ -76,6 +78,7 @@ TEST(History, UndoOfAnySequenceRestoresTheSceneBitExactly) {
       e.redo();
       ASSERT_TRUE(same_scene(e.scene(), states[i])) << "redo seed " << seed << " step " << i;
       ASSERT_EQ(e.mask(), masks[i]);
+      ASSERT_EQ(e.fingerprint(), e.scene().fingerprint()) << "redo seed " << seed << " step " << i;
     }
     EXPECT_THROW(e.redo(), Error);
   }
@@ -147,6 +150,24 @@ TEST(History, SelectRejectsAnotherScenesSelection) {
   EditSession e(random_scene(40, 0, 1));
   const GaussianScene other = random_scene(40, 0, 2);
   EXPECT_THROW(e.select(Selection::all_of(other)), Error);
+}
+
+// The session keeps its scene's fingerprint instead of hashing the scene per selection: a
+// selection made before an edit must still be refused after it, and again after an undo
+// and a redo of that edit.
+TEST(History, SelectRejectsASelectionOfTheSceneBeforeAnEdit) {
+  EditSession e(random_scene(60, 1, 5));
+  e.select(select_box(e.scene(), {-1, -1, -1}, {0, 0, 0}));
+  const Selection before = e.selection();
+  e.apply(plan_scale(e.scene(), e.selection(), 2));
+  EXPECT_NE(e.selection().scene_fingerprint, before.scene_fingerprint);
+  EXPECT_THROW(e.select(before), Error);
+  e.undo();
+  EXPECT_EQ(e.selection().scene_fingerprint, before.scene_fingerprint);
+  e.redo();
+  EXPECT_THROW(e.select(before), Error);
+  e.undo();
+  EXPECT_NO_THROW(e.select(before));
 }
 
 TEST(Delta, RevertRejectsAMismatchedScene) {

@@ -50,19 +50,17 @@ const char* step_kind_name(StepKind kind) {
   return "edit";
 }
 
-EditState::EditState(GaussianScene scene) : session_(std::move(scene)) {
-  fingerprint_ = session_.scene().fingerprint();
-}
+EditState::EditState(GaussianScene scene) : session_(std::move(scene)) {}
 
 GaussianScene EditState::scene_copy(uint64_t& fingerprint) const {
   std::shared_lock<std::shared_mutex> lock(mu_);
-  fingerprint = fingerprint_;
+  fingerprint = session_.fingerprint();
   return session_.scene();
 }
 
 uint64_t EditState::fingerprint() const {
   std::shared_lock<std::shared_mutex> lock(mu_);
-  return fingerprint_;
+  return session_.fingerprint();
 }
 
 void EditState::bounds(Vec3& lo, Vec3& hi, int& sh_degree) const {
@@ -87,7 +85,7 @@ EditStatus EditState::status() const {
   s.redo_steps = session_.history().redo_steps();
   s.notice = session_.notice();
   s.revision = revision_.load();
-  s.fingerprint = fingerprint_;
+  s.fingerprint = session_.fingerprint();
   return s;
 }
 
@@ -95,16 +93,11 @@ EditResult EditState::result(const std::string& label, const std::vector<std::st
   return {label, notes, session_.notice(), session_.scene().size(), count_selected(session_.mask())};
 }
 
-void EditState::changed() {
-  fingerprint_ = session_.scene().fingerprint();
-  ++revision_;
-}
-
 void EditState::record(StepKind kind, const std::string& label) {
   // A new step drops the redo tail (History::push did the same), then the entries follow
   // the history's cap: steps it dropped from the front are dropped here too.
   timeline_.entries.resize(timeline_.cursor);
-  timeline_.entries.push_back({kind, label, fingerprint_});  // current: changed() ran after any edit
+  timeline_.entries.push_back({kind, label, session_.fingerprint()});
   timeline_.cursor = timeline_.entries.size();
   const size_t kept = session_.history().undo_steps();
   if (timeline_.cursor > kept) {
@@ -140,8 +133,8 @@ EditResult EditState::select(const edit::SelectOp& op) {
 bool EditState::select_from_segmentation(const std::vector<bool>& mask, uint64_t fingerprint,
                                          const std::string& label, StepKind kind) {
   std::unique_lock<std::shared_mutex> lock(mu_);
-  if (fingerprint != fingerprint_) return false;
-  session_.select(Selection::from_mask(session_.scene(), mask), label);
+  if (fingerprint != session_.fingerprint()) return false;
+  session_.select(Selection::from_mask(session_.scene(), mask, fingerprint), label);
   record(kind, label);
   ++revision_;
   return true;

@@ -125,7 +125,7 @@ class EditState {
   template <typename Fn>
   auto read(Fn&& fn) const {
     std::shared_lock<std::shared_mutex> lock(mu_);
-    return fn(session_.scene(), session_.mask(), revision_.load(), fingerprint_);
+    return fn(session_.scene(), session_.mask(), revision_.load(), session_.fingerprint());
   }
   std::vector<uint8_t> serialize(edit::SceneFormat format) const;
   // Writes the scene to `path` (never one of `inputs`); returns the Gaussian count.
@@ -133,13 +133,12 @@ class EditState {
 
  private:
   EditResult result(const std::string& label, const std::vector<std::string>& notes) const;
-  void changed();  // lock held exclusively
+  void changed() { ++revision_; }  // the scene changed; lock held exclusively
   void record(StepKind kind, const std::string& label);  // after a step was pushed; lock held
 
   Timeline timeline_;
   mutable std::shared_mutex mu_;
   edit::EditSession session_;
-  uint64_t fingerprint_ = 0;
   std::atomic<uint64_t> revision_{1};  // scene or selection changed: re-render
 };
 
