@@ -571,6 +571,18 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // depth layer of it, not the clicked one alone.
   bool first_whole_mask = false;
 
+  // A view's all-pixel votes, unpacked into one list the round reuses (the view keeps them
+  // packed); inspection and then the vote of the same view unpack them once.
+  ViewVotes all_votes;
+  size_t all_votes_of = SIZE_MAX;
+  auto all_votes_of_view = [&](size_t k) -> const ViewVotes& {
+    if (all_votes_of != k) {
+      views_[k].all_votes.unpack(all_votes, o.threads);
+      all_votes_of = k;
+    }
+    return all_votes;
+  };
+
   // Votes of one view's mask (`mask`: vs.mask as an image at the view's resolution, built
   // once per view for inspection, votes, the background gate and the centre evidence),
   // gated to the target's depth layer.
@@ -611,7 +623,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       const double near_limit = near * (1 - o.background_options.occluder_margin);
       const Image bg = background_inverse_depth(mask, view.depth, view.alpha, near_limit, o.background_options, o.threads);
       const SurroundingsSurface surface = surroundings_surface(scene_, view.camera, mask, view.depth, view.alpha,
-                                                               view.all_votes, near_limit, o.background_options, o.threads);
+                                                               all_votes_of_view(k), near_limit, o.background_options, o.threads);
       vs.background_offset = surface.offset;
       vs.background_tolerance = surface.tolerance >= 0 ? surface.tolerance : o.background_options.tolerance;
       ViewVotes against;  // left out of the neutral weights: they count in the view's total
@@ -643,9 +655,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
     TimeInto timed{part.accumulate};
     ViewVotes centred;
     if (o.centre_rule.enabled)
-      centred = centred_votes(scene_, view.camera, mask, view.depth, vs.positive, view.all_votes,
+      centred = centred_votes(scene_, view.camera, mask, view.depth, vs.positive, all_votes_of_view(k),
                               o.centre_rule.hidden_margin_pixels(view.camera), o.threads);
-    acc.add(vs.positive, view.all_votes, +1, &vs.neutral, &centred, &whole, o.threads);
+    acc.add(vs.positive, all_votes_of_view(k), +1, &vs.neutral, &centred, &whole, o.threads);
     live.add_support(vs.positive.index);
     undecided = true;
     vs.status = ViewStatus::Accepted;
@@ -733,7 +745,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
           // The coverage is only rendered under the mask: the selection's whole extent in
           // this view is its share of the view's all-pixel votes (the same blending weights).
           double total = 0, inside = 0;
-          const ViewVotes& all = views_[k].all_votes;
+          const ViewVotes& all = all_votes_of_view(k);
           for (size_t i = 0; i < all.index.size(); ++i)
             if (current[all.index[i]]) total += double(all.weight[i]);
           for (size_t i = 0; i < raw.index.size(); ++i)

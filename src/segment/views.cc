@@ -85,7 +85,7 @@ SegmentView build_view(const GaussianScene& scene, const Camera& camera, int cam
   } else {
     rgb = std::move(r.color);
   }
-  v.all_votes = total_votes(v.frame, opt.threads);
+  v.all_votes = PackedVotes(total_votes(v.frame, opt.threads));
   v.embedding = sam.encode_cached(rgb, opt.cache_dir, timings);
   // What SAM encoded, a quarter of the float image: at 1000x660, 6 MB less per view.
   v.rgb8 = models::quantise_rgb(rgb);
@@ -95,7 +95,7 @@ SegmentView build_view(const GaussianScene& scene, const Camera& camera, int cam
 size_t view_bytes(const SegmentView& v) {
   return sizeof(SegmentView) + frame_bytes(v.frame) + v.rgb8.capacity() +
          (v.depth.data.capacity() + v.alpha.data.capacity()) * sizeof(float) +
-         v.all_votes.index.capacity() * sizeof(uint32_t) + v.all_votes.weight.capacity() * sizeof(int64_t) +
+         v.all_votes.bytes() +
          (v.embedding.features.bytes ? v.embedding.features.bytes->capacity() : 0);
 }
 

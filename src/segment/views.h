@@ -14,6 +14,7 @@
 #include "core/scene.h"
 #include "models/sam.h"
 #include "render/rasterizer.h"
+#include "segment/packed_votes.h"
 #include "segment/votes.h"
 
 namespace isegman::segment {
@@ -26,7 +27,7 @@ struct SegmentView {
   Image rgb_image() const;    // rgb8 as a float image
   Image depth, alpha;     // rendered expected depth and accumulated alpha
   PreparedFrame frame;
-  ViewVotes all_votes;    // A-votes of every pixel (mask independent)
+  PackedVotes all_votes;  // A-votes of every pixel (mask independent), packed: kept all session
   models::SamEmbedding embedding;
 };
 
