@@ -27,6 +27,7 @@
 #include "app/demo_scene.h"
 #include "io/gaussian_file.h"
 #include "io/ply.h"
+#include "segment/packed_votes.h"
 #include "segment/pipeline.h"
 
 namespace fs = std::filesystem;
@@ -267,6 +268,29 @@ void BM_LargeScene(benchmark::State& state) {
   fs::remove_all(vo.cache_dir);
 }
 BENCHMARK(BM_LargeScene)->Arg(3000000)->Arg(6000000)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+
+// What packing a view's all-pixel votes costs a round: unpacking one view's list into the
+// list the round reuses. 2.6M entries is a view of the 6M-Gaussian scene above (index gaps
+// of 1-4, a few pixels' weight each). Argument: entries.
+void BM_PackedVotesUnpack(benchmark::State& state) {
+  segment::ViewVotes votes;
+  uint64_t x = 12345;
+  for (uint32_t index = 0; votes.index.size() < size_t(state.range(0));) {
+    x = x * 6364136223846793005ull + 1442695040888963407ull;
+    votes.index.push_back(index);
+    votes.weight.push_back(int64_t((x >> 20) % (uint64_t(1) << 28)));
+    index += 1 + uint32_t((x >> 60) % 4);
+  }
+  const segment::PackedVotes packed(votes);
+  segment::ViewVotes out;
+  for (auto _ : state) {
+    packed.unpack(out, 0);
+    benchmark::DoNotOptimize(out.weight.data());
+  }
+  state.counters["packed_mb"] = double(packed.bytes()) / (1 << 20);
+  state.counters["unpacked_mb"] = double(votes.index.size() * 12) / (1 << 20);
+}
+BENCHMARK(BM_PackedVotesUnpack)->Arg(2600000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace isegman
