@@ -42,6 +42,7 @@ const char* const kSegmentOptionsHelp =
     "  --no-granularity-consensus    keep the clicked view's mask even when most views segment a larger\n"
     "                                whole around it\n"
     "  --no-whole-mask-retry         in granularity consensus, do not try the clicked view's whole mask\n"
+    "  --no-empty-selection-retry    do not try the clicked view's larger SAM candidates when its mask selects nothing\n"
     "                                (every depth layer) when the depth gate kept little of it\n"
 
     "  --no-object-prior             keep SAM's choice in the clicked view even when it runs past three\n"
@@ -71,7 +72,7 @@ const std::set<std::string>& segment_value_flags() {
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "keep-whole-islands",
-                                          "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
+                                          "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives"};
   return f;
 }
@@ -108,6 +109,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.choose_candidate = args.has("candidate-choice");
   s.session.granularity_consensus = !args.has("no-granularity-consensus");
   s.session.whole_mask_retry = !args.has("no-whole-mask-retry");
+  s.session.empty_selection_retry = !args.has("no-empty-selection-retry");
   s.session.whole_neutral = !args.has("no-whole-neutral");
   s.session.object_prior = !args.has("no-object-prior");
   s.session.propagation.hidden_fallback = args.has("hidden-fallback");

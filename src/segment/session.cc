@@ -779,8 +779,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
       larger += k != first_view && vs.status == ViewStatus::NoOverlap && vs.inspected &&
                 vs.selection_inside >= o.min_selection_inside;
     }
+    decide();
+    const bool selects_nothing = o.empty_selection_retry && live.members().empty();
     const models::SegmentResult& r = *results[first_view];
-    if (larger >= 2 && larger > rep.accepted - 1) {
+    if ((larger >= 2 && larger > rep.accepted - 1) || selects_nothing) {
       const int used = fresh[first_view].candidate;
       const double first_gated = fresh[first_view].gated_share;
       const size_t used_area = mask_area(r.candidates.empty() ? r.mask : r.candidates[size_t(used)]);

@@ -72,6 +72,10 @@ struct SessionOptions {
   // over the sliver of the object behind it (README: the porch's watering can).
   bool whole_mask_retry = true;
   double whole_mask_gated_share = 0.5;
+  // ... and when the first view's mask selects no Gaussian at all: a mark on a surface (a
+  // knot in a workbench's wood) that SAM masks finer than the Gaussians that paint it. No
+  // 3D selection has that granularity; the larger candidates are tried as above.
+  bool empty_selection_retry = true;
   // A view whose mask is a part of a larger candidate of its own (the back of a chair, and the
   // whole chair) does not say whether the part or the whole is meant: what the larger
   // candidates add around the mask (for Gaussians wholly outside it) is left open in that
