@@ -42,8 +42,9 @@ const char* const kSegmentOptionsHelp =
     "  --no-granularity-consensus    keep the clicked view's mask even when most views segment a larger\n"
     "                                whole around it\n"
     "  --no-whole-mask-retry         in granularity consensus, do not try the clicked view's whole mask\n"
-    "  --no-empty-selection-retry    do not try the clicked view's larger SAM candidates when its mask selects nothing\n"
     "                                (every depth layer) when the depth gate kept little of it\n"
+    "  --no-empty-selection-retry    do not try the clicked view's larger SAM candidates when its mask\n"
+    "                                selects no Gaussian (a mark finer than the Gaussians that paint it)\n"
 
     "  --no-object-prior             keep SAM's choice in the clicked view even when it runs past three\n"
     "                                image borders (or two, over 30 % of the image) and a candidate\n"

@@ -772,7 +772,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
     // Most clicked views' masks hold the first view's selection but are far larger than it
     // (SAM took one slat of a screen where the user clicked, the whole screen elsewhere):
     // the first mask is a finer granularity than the object the other views agree on. Its
-    // larger candidates are tried and the one most views accept is kept.
+    // larger candidates are tried and the one most views accept is kept. So they are when the
+    // first mask selects nothing (SessionOptions::empty_selection_retry).
     int larger = 0;
     for (size_t k = 0; k < V; ++k) {
       const ViewState& vs = fresh[k];
