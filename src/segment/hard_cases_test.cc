@@ -241,20 +241,28 @@ TEST(HardCases, AClickNearAThinPostsEdgeReachesOtherViewsOnThePost) {
   EXPECT_LT(ours.scenery, without.scenery / 2);
 }
 
+// The task's first drawn click at the ablation's resolution, with the default options and
+// with `without` (named `what`); prints both.
+std::pair<Outcome, Outcome> drawn_click_with_and_without(const std::string& name,
+                                                         const SessionOptions& without_options, const char* what) {
+  Outcome ours = run(name, SessionOptions(), {}, kAblation, 1);
+  Outcome without = run(name, without_options, {}, kAblation, 1);
+  std::printf("[ hard ] %s, drawn click: IoU %.1f%% (%d views accepted, %zu selected, %zu wall or floor); %s %.1f%% "
+              "(%d accepted, %zu selected)\n",
+              name.c_str(), 100 * ours.iou, count_views(ours, accepted), ours.selected, ours.scenery, what,
+              100 * without.iou, count_views(without, accepted), without.selected);
+  return {std::move(ours), std::move(without)};
+}
+
 TEST(HardCases, AClickOnAnEdgeLeafSelectsTheHangingPlantNotTheLeafAlone) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // The hanging plant's first drawn click is on a leaf at its edge: the clicked view's mask
   // is the plant, but the leaf is a depth layer of its own and the gate kept only it; every
   // other view's mask (the plant) held that sliver and was far larger, so inspection dropped
   // them all. Granularity consensus now also tries the clicked view's whole mask.
-  const Outcome ours = run("study/hanging_plant", SessionOptions(), {}, kAblation, 1);
   SessionOptions layer_only;
   layer_only.whole_mask_retry = false;
-  const Outcome without = run("study/hanging_plant", layer_only, {}, kAblation, 1);
-  std::printf("[ hard ] study/hanging_plant, drawn click: IoU %.1f%% (%d views accepted, %zu selected); the clicked "
-              "layer only %.1f%% (%d accepted, %zu selected)\n",
-              100 * ours.iou, count_views(ours, accepted), ours.selected, 100 * without.iou,
-              count_views(without, accepted), without.selected);
+  const auto [ours, without] = drawn_click_with_and_without("study/hanging_plant", layer_only, "the clicked layer only");
   EXPECT_GT(ours.iou, 0.8);
   EXPECT_LT(without.iou, 0.3);
   EXPECT_GE(count_views(ours, accepted), count_views(without, accepted) + 10);
@@ -267,14 +275,9 @@ TEST(HardCases, AClickOnAKnotInTheWorkbenchSelectsTheBenchNotNothing) {
   // mask, so nothing is selected, and every other view is dropped for disagreeing with an
   // empty selection. The clicked view's larger candidates are now tried, as when the other
   // views' masks are far larger.
-  const Outcome ours = run("workshop/workbench", SessionOptions(), {}, kAblation, 1);
   SessionOptions no_retry;
   no_retry.empty_selection_retry = false;
-  const Outcome without = run("workshop/workbench", no_retry, {}, kAblation, 1);
-  std::printf("[ hard ] workshop/workbench, drawn click on a knot: IoU %.1f%% (%d views accepted, %zu selected); "
-              "without the retry %.1f%% (%d accepted, %zu selected)\n",
-              100 * ours.iou, count_views(ours, accepted), ours.selected, 100 * without.iou,
-              count_views(without, accepted), without.selected);
+  const auto [ours, without] = drawn_click_with_and_without("workshop/workbench", no_retry, "without the retry");
   EXPECT_EQ(without.selected, 0u);
   EXPECT_GT(ours.iou, 0.75);
   EXPECT_LT(ours.scenery, ours.selected / 20);  // the bench, not the floor or the wall behind it
