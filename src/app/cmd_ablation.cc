@@ -92,6 +92,7 @@ int run_eval_ablation(const Args& args) {
       {"+ interior anchors", [](segment::SessionOptions& o) { o.interior_anchor.enabled = true; }},
       {"- whole-mask retry", [](segment::SessionOptions& o) { o.whole_mask_retry = false; }},
       {"- empty-selection retry", [](segment::SessionOptions& o) { o.empty_selection_retry = false; }},
+      {"- grow to the selection", [](segment::SessionOptions& o) { o.grow_to_selection = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

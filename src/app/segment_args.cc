@@ -45,6 +45,8 @@ const char* const kSegmentOptionsHelp =
     "                                (every depth layer) when the depth gate kept little of it\n"
     "  --no-empty-selection-retry    do not try the clicked view's larger SAM candidates when its mask\n"
     "                                selects no Gaussian (a mark finer than the Gaussians that paint it)\n"
+    "  --no-grow-to-selection        drop a clicked view whose mask is a part of the selection even when\n"
+    "                                its larger SAM candidate holding that part agrees with the selection\n"
 
     "  --no-object-prior             keep SAM's choice in the clicked view even when it runs past three\n"
     "                                image borders (or two, over 30 % of the image) and a candidate\n"
@@ -73,7 +75,7 @@ const std::set<std::string>& segment_value_flags() {
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "keep-whole-islands",
-                                          "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
+                                          "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives"};
   return f;
 }
@@ -111,6 +113,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.granularity_consensus = !args.has("no-granularity-consensus");
   s.session.whole_mask_retry = !args.has("no-whole-mask-retry");
   s.session.empty_selection_retry = !args.has("no-empty-selection-retry");
+  s.session.grow_to_selection = !args.has("no-grow-to-selection");
   s.session.whole_neutral = !args.has("no-whole-neutral");
   s.session.object_prior = !args.has("no-object-prior");
   s.session.propagation.hidden_fallback = args.has("hidden-fallback");

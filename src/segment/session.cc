@@ -36,7 +36,7 @@ std::string describe(const VotingParts& p) {
 
 SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
-  o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = false;
+  o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;
   o.whole_islands.enabled = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
@@ -740,18 +740,68 @@ RoundReport Session::run_round(State& next, const State& prev) {
       if (mask.empty()) mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
       if (inspect) {
         TimeInto timed{part.agreement};
-        Agreement a = agreement(mask, coverage);
+        // The selection's whole extent in this view is its share of the view's all-pixel
+        // votes (the same blending weights): the coverage is only rendered under the mask.
+        double total = 0;
         if (have_raw) {
-          // The coverage is only rendered under the mask: the selection's whole extent in
-          // this view is its share of the view's all-pixel votes (the same blending weights).
-          double total = 0, inside = 0;
           const ViewVotes& all = all_votes_of_view(k);
           for (size_t i = 0; i < all.index.size(); ++i)
             if (current[all.index[i]]) total += double(all.weight[i]);
-          for (size_t i = 0; i < raw.index.size(); ++i)
-            if (current[raw.index[i]]) inside += double(raw.weight[i]);
-          a.coverage = std::max(a.both, total / kVoteScale);
-          a.inside = total > 0 ? inside / total : 0.0;
+        }
+        auto measure = [&](const Image& m, const ViewVotes& votes, const Image& cov) {
+          Agreement a = agreement(m, cov);
+          if (have_raw) {
+            double inside = 0;
+            for (size_t i = 0; i < votes.index.size(); ++i)
+              if (current[votes.index[i]]) inside += double(votes.weight[i]);
+            a.coverage = std::max(a.both, total / kVoteScale);
+            a.inside = total > 0 ? inside / total : 0.0;
+          }
+          return a;
+        };
+        Agreement a = measure(mask, raw, coverage);
+        if (!passes(a) && o.grow_to_selection && have_raw && a.mask_on_selection() >= o.min_mask_on_selection &&
+            a.selection_inside() < o.min_selection_inside) {
+          // The mask is a part of the selection (the ladle's bowl where the clicked view
+          // segmented the whole ladle): this view's larger candidate holding it may be the
+          // selection's granularity. The one of highest IoU with the rendered selection
+          // votes instead, if it passes inspection and is close to the selection (IoU at
+          // least min_grown_iou): one that merely holds it may add what a wrong first view
+          // added to the selection (the bush over the pot) and confirm it.
+          TimeInto timed_votes{part.mask_votes};
+          const std::vector<float>& values = live.values();
+          const size_t area = size_t(vs.mask_pixels);
+          double best_iou = -1;
+          ViewState best;
+          Image best_mask;
+          ViewVotes best_votes;
+          for (size_t c = 0; c < r.candidates.size(); ++c) {
+            const Image& w = r.candidates[c];
+            if (int(c) == vs.candidate || r.candidate_scores[c] < o.min_granularity_score || w.data.size() != mask.data.size() ||
+                (o.object_prior && surroundings(w, o.min_surroundings_share)))
+              continue;
+            ViewState grown = vs;
+            take_candidate(grown, r, int(c));
+            size_t held = 0;
+            for (size_t i = 0; i < mask.data.size(); ++i) held += mask.data[i] > 0.5f && grown.mask[i];
+            if (size_t(grown.mask_pixels) <= area || double(grown.mask_pixels) > o.max_whole_growth * double(area) ||
+                double(held) < 0.9 * double(area))
+              continue;
+            Image m = mask_image(grown.mask, views_[k].camera.width, views_[k].camera.height), cov;
+            ViewVotes votes = masked_votes(views_[k].frame, m, o.threads, &values, &cov);
+            const Agreement g = measure(m, votes, cov);
+            if (!passes(g) || g.iou() < o.min_grown_iou || g.iou() <= best_iou) continue;
+            best_iou = g.iou();
+            a = g;
+            best = std::move(grown);
+            best_mask = std::move(m);
+            best_votes = std::move(votes);
+          }
+          if (best_iou >= 0) {
+            vs = std::move(best);
+            mask = std::move(best_mask);
+            raw = std::move(best_votes);
+          }
         }
         vs.overlap = a.mask_on_selection();
         vs.selection_inside = a.selection_inside();

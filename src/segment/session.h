@@ -76,6 +76,13 @@ struct SessionOptions {
   // knot in a workbench's wood) that SAM masks finer than the Gaussians that paint it. No
   // 3D selection has that granularity; the larger candidates are tried as above.
   bool empty_selection_retry = true;
+  // A clicked view whose mask inspection finds to be a part of the selection (it holds too
+  // little of the selection, which covers enough of it) takes its larger candidate that holds
+  // the mask and passes inspection, if one does (at most max_whole_growth times the mask's
+  // area, predicted IoU >= min_granularity_score, not the surroundings under the object prior).
+  // ... and only when it is close to the rendered selection (IoU).
+  bool grow_to_selection = true;
+  double min_grown_iou = 0.8;
   // A view whose mask is a part of a larger candidate of its own (the back of a chair, and the
   // whole chair) does not say whether the part or the whole is meant: what the larger
   // candidates add around the mask (for Gaussians wholly outside it) is left open in that
