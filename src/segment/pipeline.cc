@@ -69,9 +69,10 @@ std::unique_ptr<Session> segment_from_prompts(const SceneBundle& b, int camera_i
   t.ms_views = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   auto session = std::make_unique<Session>(b.gaussians, std::move(views), std::move(sam), so);
   const int v = view_of_camera(*session, camera_index);
-  const Camera& work = session->views()[size_t(v)].camera;
+  // By value: a click may add a view (see_through.h), which moves the session's views.
+  const int work_width = session->views()[size_t(v)].camera.width, work_height = session->views()[size_t(v)].camera.height;
   for (const Click& c : clicks) {
-    RoundReport r = session->click(v, rescaled(c, cam.width, cam.height, work.width, work.height));
+    RoundReport r = session->click(v, rescaled(c, cam.width, cam.height, work_width, work_height));
     t.ms_propagation += r.ms_propagation;
     t.ms_sam += r.ms_sam;
     t.ms_voting += r.ms_voting;
