@@ -65,6 +65,10 @@ int run_eval_ablation(const Args& args) {
   // (task_clicks). The task's score is the mean over them.
   const int clicks_per_task = args.get_int("clicks-per-task", 1);
   if (clicks_per_task < 1 || clicks_per_task > 50) throw Error("--clicks-per-task must be between 1 and 50");
+  // --second-clicks: each drawn click follows the task's own click (a second positive click
+  // on the same object, as a user refines) instead of being scored alone.
+  const bool second_clicks = args.has("second-clicks");
+  if (second_clicks && clicks_per_task < 2) throw Error("--second-clicks needs --clicks-per-task 2 or more");
   SegmentSetup setup = parse_segment_setup(args);
   auto sam = load_sam(setup);
   std::vector<EvalConfig> configs = {
@@ -93,6 +97,7 @@ int run_eval_ablation(const Args& args) {
       {"- whole-mask retry", [](segment::SessionOptions& o) { o.whole_mask_retry = false; }},
       {"- empty-selection retry", [](segment::SessionOptions& o) { o.empty_selection_retry = false; }},
       {"- grow to the selection", [](segment::SessionOptions& o) { o.grow_to_selection = false; }},
+      {"- click by click", [](segment::SessionOptions& o) { o.click_by_click = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)
@@ -207,9 +212,9 @@ int run_eval_ablation(const Args& args) {
   std::vector<std::vector<Click>> clicks_of;
   for (const auto& [s, t] : tasks) clicks_of.push_back(task_clicks(*s, *t, clicks_per_task));
   if (clicks_per_task > 1)
-    std::printf("each synthetic task: its own click and %d drawn on the object in its clicked view; the mean IoU over "
+    std::printf("each synthetic task: its own click and %d drawn on the object in its clicked view%s; the mean IoU over "
                 "them (the rows below each configuration: the task's own click alone, the worst click)\n\n",
-                clicks_per_task - 1);
+                clicks_per_task - 1, second_clicks ? ", each as a second click after its own" : "");
   for (size_t ci = 0; ci < configs.size(); ++ci) {
     segment::SessionOptions so = setup.session;
     configs[ci].apply(so);
@@ -220,8 +225,9 @@ int run_eval_ablation(const Args& args) {
       double iou = 0, acc = 0, task_ms = 0, task_worst = 1;
       for (size_t k = 0; k < clicks_of[ti].size(); ++k) {
         segment::PipelineTimings tm;
-        auto session = segment::segment_from_prompts(s->scene.bundle, t->camera, {clicks_of[ti][k]}, sam, so,
-                                                     setup.views, "all", &tm);
+        std::vector<Click> clicks{clicks_of[ti][k]};
+        if (second_clicks && k > 0) clicks.insert(clicks.begin(), clicks_of[ti][0]);
+        auto session = segment::segment_from_prompts(s->scene.bundle, t->camera, clicks, sam, so, setup.views, "all", &tm);
         const segment::MaskScore sc = segment::score_selection(
             s->scene.bundle.gaussians, s->scene.bundle.cameras, demo_object_mask(s->scene, t->object), session->selection());
         iou += sc.iou;
@@ -287,7 +293,9 @@ int run_ablation(const std::vector<std::string>& argv) {
   std::set<std::string> values = segment_value_flags();
   values.insert({"density", "width", "height", "set", "only", "configs", "overlays", "preview", "fixtures",
                  "fixture-tasks", "clicks-per-task"});
-  Args args(argv, values, segment_switch_flags());
+  std::set<std::string> switches = segment_switch_flags();
+  switches.insert("second-clicks");
+  Args args(argv, values, switches);
   const std::string set = args.get("set", "eval");
   if (set == "eval") return run_eval_ablation(args);
   if (set != "demo") throw Error("--set must be eval or demo");
@@ -353,7 +361,8 @@ int run_ablation(const std::vector<std::string>& argv) {
 RegisterCommand reg("ablation", "measure the segmentation's design choices on synthetic scenes with known labels",
                     "usage: isegman ablation [--set eval|demo] [--only TEXT] [--configs 0,2,...] [--overlays DIR]\n"
                     "                        [--density D] [--width W --height H] [--fixtures DIR]\n"
-                    "                        [--fixture-tasks DIR|none] [--clicks-per-task K] [segment options]\n"
+                    "                        [--fixture-tasks DIR|none] [--clicks-per-task K [--second-clicks]]\n"
+                    "                        [segment options]\n"
                     "  --set eval (default): the evaluation set of hard cases (gaps, occluders, thin, tiny and\n"
                     "  compound objects, coarse Gaussians, clean orbit objects), every addition beyond the paper\n"
                     "  switched off in turn; --set demo: the demo scene with propagation modes, inspection and\n"
@@ -363,7 +372,9 @@ RegisterCommand reg("ablation", "measure the segmentation's design choices on sy
                     "  under --fixtures (default ../shared/fixtures) against their hand-made masks; skipped with a\n"
                     "  message when either folder is missing. --clicks-per-task K (eval set): each synthetic task\n"
                     "  from its own click and K-1 more drawn (fixed per task) on the object in its clicked view;\n"
-                    "  the mean over them, and rows of each task's own click and of its worst click.",
+                    "  the mean over them, and rows of each task's own click and of its worst click.\n"
+                    "  --second-clicks: each drawn click is given after the task's own click, as a second\n"
+                    "  positive click on the same object, instead of alone.",
                     run_ablation);
 
 }  // namespace

@@ -35,7 +35,7 @@ std::string describe(const VotingParts& p) {
 }
 
 SessionOptions paper_pipeline(SessionOptions o) {
-  o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = false;
+  o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = o.click_by_click = false;
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;
   o.whole_islands.enabled = false;
   o.selection_prompt_rounds = 0;
@@ -441,9 +441,62 @@ RoundReport Session::run_round(State& next, const State& prev) {
       ++segmented;
     });
   };
+  // Several positive clicks in a view (SessionOptions::click_by_click): SAM also segments
+  // each click alone, as a first click (its candidates, the object prior). Where its one
+  // answer to all of them looks like the surroundings or is far larger than the union of
+  // those (the fence in front of a ball clicked twice), the union is the view's mask.
+  auto decode_each_click = [&](const std::vector<size_t>& which, const std::vector<std::vector<models::Click>>& prompts) {
+    std::vector<std::pair<size_t, size_t>> jobs;  // (entry of which, click)
+    for (size_t i = 0; i < which.size(); ++i)
+      for (size_t c = 0; c < prompts[i].size(); ++c) jobs.push_back({i, c});
+    std::vector<models::SegmentResult> single(jobs.size());
+    {
+      RestoreThreads restore_threads;
+      parallel_for(jobs.size(), workers, [&](int, size_t j) {
+        if (workers > 1) models::limit_threads_of_this_thread(1);
+        const auto [i, c] = jobs[j];
+        single[j] = sam_->decode(views_[which[i]].embedding, {prompts[i][c]});
+        ++segmented;
+      });
+    }
+    for (size_t i = 0, j = 0; i < which.size(); ++i) {
+      models::SegmentResult merged;
+      for (size_t c = 0; c < prompts[i].size(); ++c, ++j) {
+        const models::SegmentResult& r = single[j];
+        const int pick = o.object_prior ? object_candidate(r, {prompts[i][c]}, o.min_object_score, o.min_surroundings_share)
+                                        : r.mask_index;
+        const Image& m = r.candidates.empty() ? r.mask : r.candidates[size_t(pick)];
+        const float score = r.candidate_scores.empty() ? r.score : r.candidate_scores[size_t(pick)];
+        const std::vector<float>& low = r.candidate_low_res.empty() ? r.low_res_logits : r.candidate_low_res[size_t(pick)];
+        if (c == 0) {
+          merged.mask = m;
+          merged.score = score;
+          merged.low_res_logits = low;
+          merged.low_res_size = r.low_res_size;
+          continue;
+        }
+        for (size_t p = 0; p < m.data.size() && p < merged.mask.data.size(); ++p)
+          merged.mask.data[p] = std::max(merged.mask.data[p], m.data[p]);
+        merged.score = std::min(merged.score, score);
+        for (size_t p = 0; p < low.size() && p < merged.low_res_logits.size(); ++p)
+          merged.low_res_logits[p] = std::max(merged.low_res_logits[p], low[p]);
+      }
+      // SAM's joint answer stands unless it looks like the surroundings or is far larger than
+      // what the clicks segment alone.
+      const models::SegmentResult& joint = *results[which[i]];
+      const Image& together = joint.candidates.empty() ? joint.mask : joint.candidates[size_t(joint.mask_index)];
+      if (!surroundings(together, o.min_surroundings_share) &&
+          double(mask_area(together)) <= o.max_joint_growth * double(mask_area(merged.mask)))
+        continue;
+      merged.candidates = {merged.mask};
+      merged.candidate_scores = {merged.score};
+      merged.candidate_low_res = {merged.low_res_logits};
+      results[which[i]] = std::make_shared<const models::SegmentResult>(std::move(merged));
+    }
+  };
   auto segment_views = [&](const std::vector<size_t>& subset) {
-    std::vector<size_t> which, which_neg;
-    std::vector<std::vector<models::Click>> prompts, prompts_neg;
+    std::vector<size_t> which, which_neg, which_each;
+    std::vector<std::vector<models::Click>> prompts, prompts_neg, prompts_each;
     std::vector<const std::vector<float>*> previous;
     for (size_t k : subset) {
       ViewState& vs = fresh[k];
@@ -473,9 +526,15 @@ RoundReport Session::run_round(State& next, const State& prev) {
         return true;
       };
       const bool fresh_old = old.sam && !old.from_selection;
+      const bool each_click = o.click_by_click && clicks.size() > 1 &&
+                              std::all_of(clicks.begin(), clicks.end(), [](const Click& c) { return c.label == 1; });
       if (fresh_old && same_clicks(o.negative_regions)) {
         results[k] = old.sam;
       } else {
+        if (each_click) {
+          which_each.push_back(k);
+          prompts_each.push_back(clicks);
+        }
         which.push_back(k);
         prompts.push_back(std::move(clicks));
         previous.push_back(o.reuse_previous_mask && fresh_old && !old.low_res.empty() ? &old.low_res : nullptr);
@@ -491,6 +550,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     }
     decode_views(which, prompts, previous, results);
     decode_views(which_neg, prompts_neg, std::vector<const std::vector<float>*>(which_neg.size(), nullptr), negatives);
+    decode_each_click(which_each, prompts_each);
   };
   // SAM's choice in a clicked view, or the object candidate the prior prefers to it.
   auto clicked_candidate = [&](const models::SegmentResult& r, const ViewState& vs) {

