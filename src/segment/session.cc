@@ -828,8 +828,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
           // votes instead, if it passes inspection and is close to the selection (IoU at
           // least min_grown_iou): one that merely holds it may add what a wrong first view
           // added to the selection (the bush over the pot) and confirm it.
-          TimeInto timed_votes{part.mask_votes};
-          const std::vector<float>& values = live.values();
+          const std::vector<float>& values = live.values();  // (timed as inspection's agreement)
           const size_t area = size_t(vs.mask_pixels);
           double best_iou = -1;
           ViewState best;
