@@ -430,39 +430,42 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // clicks as its negatives) is cut from the view's mask, so a negative click removes
   // what it points at and leaves the rest of SAM's mask alone.
   std::vector<std::shared_ptr<const models::SegmentResult>> negatives(V);
+  // Decodes prompts[i] in view view_of[i] (with previous[i], or none when `previous` is empty).
+  auto decode = [&](const std::vector<size_t>& view_of, const std::vector<std::vector<models::Click>>& prompts,
+                    const std::vector<const std::vector<float>*>& previous) {
+    std::vector<std::shared_ptr<const models::SegmentResult>> out(view_of.size());
+    RestoreThreads restore_threads;
+    parallel_for(view_of.size(), workers, [&](int, size_t i) {
+      if (workers > 1) models::limit_threads_of_this_thread(1);
+      out[i] = std::make_shared<const models::SegmentResult>(
+          sam_->decode(views_[view_of[i]].embedding, prompts[i], previous.empty() ? nullptr : previous[i]));
+      ++segmented;
+    });
+    return out;
+  };
   auto decode_views = [&](const std::vector<size_t>& which, const std::vector<std::vector<models::Click>>& prompts,
                           const std::vector<const std::vector<float>*>& previous,
                           std::vector<std::shared_ptr<const models::SegmentResult>>& into) {
-    RestoreThreads restore_threads;
-    parallel_for(which.size(), workers, [&](int, size_t i) {
-      if (workers > 1) models::limit_threads_of_this_thread(1);
-      into[which[i]] = std::make_shared<const models::SegmentResult>(
-          sam_->decode(views_[which[i]].embedding, prompts[i], previous[i]));
-      ++segmented;
-    });
+    const auto out = decode(which, prompts, previous);
+    for (size_t i = 0; i < which.size(); ++i) into[which[i]] = out[i];
   };
   // Several positive clicks in a view (SessionOptions::click_by_click): SAM also segments
   // each click alone, as a first click (its candidates, the object prior). Where its one
   // answer to all of them looks like the surroundings or is far larger than the union of
   // those (the fence in front of a ball clicked twice), the union is the view's mask.
   auto decode_each_click = [&](const std::vector<size_t>& which, const std::vector<std::vector<models::Click>>& prompts) {
-    std::vector<std::pair<size_t, size_t>> jobs;  // (entry of which, click)
+    std::vector<size_t> view_of;  // one decode per click, in order
+    std::vector<std::vector<models::Click>> alone;
     for (size_t i = 0; i < which.size(); ++i)
-      for (size_t c = 0; c < prompts[i].size(); ++c) jobs.push_back({i, c});
-    std::vector<models::SegmentResult> single(jobs.size());
-    {
-      RestoreThreads restore_threads;
-      parallel_for(jobs.size(), workers, [&](int, size_t j) {
-        if (workers > 1) models::limit_threads_of_this_thread(1);
-        const auto [i, c] = jobs[j];
-        single[j] = sam_->decode(views_[which[i]].embedding, {prompts[i][c]});
-        ++segmented;
-      });
-    }
+      for (const models::Click& c : prompts[i]) {
+        view_of.push_back(which[i]);
+        alone.push_back({c});
+      }
+    const auto single = decode(view_of, alone, {});
     for (size_t i = 0, j = 0; i < which.size(); ++i) {
       models::SegmentResult merged;
       for (size_t c = 0; c < prompts[i].size(); ++c, ++j) {
-        const models::SegmentResult& r = single[j];
+        const models::SegmentResult& r = *single[j];
         const int pick = o.object_prior ? object_candidate(r, {prompts[i][c]}, o.min_object_score, o.min_surroundings_share)
                                         : r.mask_index;
         const Image& m = r.candidates.empty() ? r.mask : r.candidates[size_t(pick)];
