@@ -179,6 +179,16 @@ RoundReport Session::click(int view, const Click& c) {
   return report;
 }
 
+namespace {
+// Whether view v renders the surface at depth `surface` at the click (within the relative
+// depth band that counts as the clicked surface).
+bool shows_surface(const SegmentView& v, const Click& c, double surface, double band) {
+  const int x = int(c.x), y = int(c.y);
+  if (x < 0 || y < 0 || x >= v.depth.width || y >= v.depth.height) return false;
+  return v.alpha.at(x, y) > 0.5f && std::abs(double(v.depth.at(x, y)) - surface) <= band * surface;
+}
+}  // namespace
+
 int Session::see_through_view(int view, const Click& c) {
   if (!options_.see_through || c.label != 1) return view;
   const SegmentView& base = views_[size_t(view)];
@@ -190,9 +200,14 @@ int Session::see_through_view(int view, const Click& c) {
   size_t inside = 0;
   for (uint32_t p : occ.pixels) inside += p < direct.mask.data.size() && direct.mask.data[p] > 0.5f;
   if (double(inside) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) return view;
+  // A view already peeled from this one that shows the clicked surface at the click is this
+  // click's view too (a second click on the ball behind the fence finds a cut a little
+  // deeper): a second, nearly identical view would vote the same evidence twice.
   const std::pair<int, float> key{view, float(occ.cut)};
   for (const auto& [k, index] : peeled_)
-    if (k == key) return index;
+    if (k == key || (k.first == view && shows_surface(views_[size_t(index)], c, occ.surface,
+                                                      options_.see_through_options.band)))
+      return index;
   ViewOptions vo = options_.see_through_views;
   vo.use_photos = false;  // a photo cannot be peeled: the render can
   vo.max_side = std::max(base.camera.width, base.camera.height);
