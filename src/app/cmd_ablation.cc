@@ -21,6 +21,7 @@
 #include "io/atomic_file.h"
 #include "io/scene_loader.h"
 #include "io/image_io.h"
+#include "segment/corrective_click.h"
 #include "segment/evaluation.h"
 #include "segment/overlay.h"
 #include "segment/pipeline.h"
@@ -69,6 +70,13 @@ int run_eval_ablation(const Args& args) {
   // on the same object, as a user refines) instead of being scored alone.
   const bool second_clicks = args.has("second-clicks");
   if (second_clicks && clicks_per_task < 2) throw Error("--second-clicks needs --clicks-per-task 2 or more");
+  // --corrective-clicks N: after each synthetic task's own click, up to N more as a user
+  // corrects (segment/corrective_click.h): at the most interior pixel of the larger error in
+  // the clicked view, positive where the selection misses the object, negative where it
+  // takes something else. The task scores after its last click; rows per click count.
+  const int corrective = args.get_int("corrective-clicks", 0);
+  if (corrective < 0 || corrective > 20) throw Error("--corrective-clicks must be between 0 and 20");
+  if (corrective > 0 && clicks_per_task > 1) throw Error("--corrective-clicks and --clicks-per-task exclude each other");
   SegmentSetup setup = parse_segment_setup(args);
   auto sam = load_sam(setup);
   std::vector<EvalConfig> configs = {
@@ -220,6 +228,7 @@ int run_eval_ablation(const Args& args) {
     configs[ci].apply(so);
     double miou = 0, macc = 0, ms = 0, worst = 1;
     std::vector<double> per, per_worst, per_own;
+    std::vector<std::vector<double>> per_after(static_cast<size_t>(corrective + 1));  // [k]: after k + 1 clicks
     for (size_t ti = 0; ti < tasks.size(); ++ti) {
       const auto& [s, t] = tasks[ti];
       double iou = 0, acc = 0, task_ms = 0, task_worst = 1;
@@ -228,8 +237,25 @@ int run_eval_ablation(const Args& args) {
         std::vector<Click> clicks{clicks_of[ti][k]};
         if (second_clicks && k > 0) clicks.insert(clicks.begin(), clicks_of[ti][0]);
         auto session = segment::segment_from_prompts(s->scene.bundle, t->camera, clicks, sam, so, setup.views, "all", &tm);
-        const segment::MaskScore sc = segment::score_selection(
-            s->scene.bundle.gaussians, s->scene.bundle.cameras, demo_object_mask(s->scene, t->object), session->selection());
+        const std::vector<bool> truth = demo_object_mask(s->scene, t->object);
+        auto score = [&] {
+          return segment::score_selection(s->scene.bundle.gaussians, s->scene.bundle.cameras, truth, session->selection());
+        };
+        segment::MaskScore sc = score();
+        if (corrective > 0) {
+          const int view = segment::view_of_camera(*session, t->camera);
+          const Camera& cam = session->views()[size_t(view)].camera;
+          const Image truth_mask = segment::selection_mask(s->scene.bundle.gaussians, cam, truth, cam.width, cam.height);
+          for (auto& after : per_after) after.push_back(sc.iou);  // the later counts replaced as clicks come
+          for (int c = 0; c < corrective; ++c) {
+            const auto next = segment::corrective_click(
+                truth_mask, segment::selection_mask(s->scene.bundle.gaussians, cam, session->selection(), cam.width, cam.height));
+            if (!next) break;  // nothing left to correct: the later counts keep this score
+            session->click(view, *next);  // (the interaction time stays the first click's)
+            sc = score();
+            for (int later = c + 1; later <= corrective; ++later) per_after[size_t(later)].back() = sc.iou;
+          }
+        }
         iou += sc.iou;
         acc += sc.accuracy;
         task_ms += tm.ms_interaction();
@@ -284,6 +310,20 @@ int run_eval_ablation(const Args& args) {
       row("... the task's own click (synthetic)", per_own);
       row("... its worst click per task (synthetic)", per_worst);
     }
+    if (corrective > 0 && !tasks.empty()) {
+      for (int c = 0; c <= corrective; ++c) {
+        const std::vector<double>& v = per_after[size_t(c)];
+        double mean = 0, least = 1;
+        for (double p : v) {
+          mean += p;
+          least = std::min(least, p);
+        }
+        std::printf("| ... after %d click%s (synthetic) | %.2f | %.1f | | |", c + 1, c ? "s" : "", 100 * mean / double(v.size()),
+                    100 * least);
+        for (double p : v) std::printf(" %.1f |", 100 * p);
+        std::printf("\n");
+      }
+    }
     std::fflush(stdout);
   }
   return 0;
@@ -292,7 +332,7 @@ int run_eval_ablation(const Args& args) {
 int run_ablation(const std::vector<std::string>& argv) {
   std::set<std::string> values = segment_value_flags();
   values.insert({"density", "width", "height", "set", "only", "configs", "overlays", "preview", "fixtures",
-                 "fixture-tasks", "clicks-per-task"});
+                 "fixture-tasks", "clicks-per-task", "corrective-clicks"});
   std::set<std::string> switches = segment_switch_flags();
   switches.insert("second-clicks");
   Args args(argv, values, switches);
@@ -362,6 +402,7 @@ RegisterCommand reg("ablation", "measure the segmentation's design choices on sy
                     "usage: isegman ablation [--set eval|demo] [--only TEXT] [--configs 0,2,...] [--overlays DIR]\n"
                     "                        [--density D] [--width W --height H] [--fixtures DIR]\n"
                     "                        [--fixture-tasks DIR|none] [--clicks-per-task K [--second-clicks]]\n"
+                    "                        [--corrective-clicks N]\n"
                     "                        [segment options]\n"
                     "  --set eval (default): the evaluation set of hard cases (gaps, occluders, thin, tiny and\n"
                     "  compound objects, coarse Gaussians, clean orbit objects), every addition beyond the paper\n"
@@ -374,7 +415,10 @@ RegisterCommand reg("ablation", "measure the segmentation's design choices on sy
                     "  from its own click and K-1 more drawn (fixed per task) on the object in its clicked view;\n"
                     "  the mean over them, and rows of each task's own click and of its worst click.\n"
                     "  --second-clicks: each drawn click is given after the task's own click, as a second\n"
-                    "  positive click on the same object, instead of alone.",
+                    "  positive click on the same object, instead of alone. --corrective-clicks N (eval set):\n"
+                    "  after each synthetic task's own click, up to N clicks as a user corrects, at the most\n"
+                    "  interior pixel of the larger error in the clicked view (positive where the selection\n"
+                    "  misses the object, negative where it takes something else); rows per click count.",
                     run_ablation);
 
 }  // namespace
