@@ -50,6 +50,7 @@ const char* status_word(segment::ViewStatus s) {
     case segment::ViewStatus::EmptyMask: return "empty";
     case segment::ViewStatus::NoOverlap: return "dropped";
     case segment::ViewStatus::Skipped: return "skipped";
+    case segment::ViewStatus::NegativeInside: return "negative";
   }
   return "?";
 }
@@ -106,6 +107,7 @@ int run_eval_ablation(const Args& args) {
       {"- empty-selection retry", [](segment::SessionOptions& o) { o.empty_selection_retry = false; }},
       {"- grow to the selection", [](segment::SessionOptions& o) { o.grow_to_selection = false; }},
       {"- click by click", [](segment::SessionOptions& o) { o.click_by_click = false; }},
+      {"- negative granularity", [](segment::SessionOptions& o) { o.negative_granularity = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

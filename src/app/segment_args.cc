@@ -61,6 +61,8 @@ const char* const kSegmentOptionsHelp =
     "  --no-depth-agreement          search features around a click's reprojection even where the\n"
     "                                view's depth there agrees with the clicked point's\n"
     "  --sam-negatives               give negative clicks to SAM instead of cutting their region\n"
+    "  --no-negative-granularity     keep a clicked view's candidate that takes in what a negative\n"
+    "                                click points at (only cut that region from it)\n"
     "  --sam-all-clicks              give a view's positive clicks to SAM together (one answer) instead\n"
     "                                of segmenting each alone and taking the union\n"
     "  --photos                      segment the source photos instead of renders\n"
@@ -78,7 +80,7 @@ const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "keep-whole-islands",
                                           "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
-                                          "sam-negatives", "sam-all-clicks"};
+                                          "sam-negatives", "sam-all-clicks", "no-negative-granularity"};
   return f;
 }
 
@@ -123,6 +125,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.interior_anchor.enabled = args.has("interior-anchor");
   s.session.negative_regions = !args.has("sam-negatives");
   s.session.click_by_click = !args.has("sam-all-clicks");
+  s.session.negative_granularity = !args.has("no-negative-granularity");
   s.session.selection_prompt_rounds = args.get_int("selection-prompts", 2);
   if (s.session.selection_prompt_rounds < 0 || s.session.selection_prompt_rounds > 10)
     throw Error("--selection-prompts must be between 0 and 10");

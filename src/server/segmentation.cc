@@ -482,7 +482,8 @@ std::vector<ViewEvidence> Segmentation::evidence() const {
       case segment::ViewStatus::Accepted: e.status = "accepted"; break;
       case segment::ViewStatus::NoClicks: e.status = "no-clicks"; break;
       case segment::ViewStatus::EmptyMask: e.status = "empty-mask"; break;
-      case segment::ViewStatus::NoOverlap: e.status = "dropped"; break;
+      case segment::ViewStatus::NoOverlap:
+      case segment::ViewStatus::NegativeInside: e.status = "dropped"; break;
       case segment::ViewStatus::Skipped: e.status = "skipped"; break;
     }
     e.index = k;
