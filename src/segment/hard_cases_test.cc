@@ -432,22 +432,33 @@ TEST(HardCases, ASecondClickOnTheBallBehindTheFenceKeepsItsPeeledView) {
   EXPECT_GT(two.iou, 0.85);
 }
 
-// The task's own click, then its next click where a benchmark user would put it (the most
-// interior pixel of the larger error in the clicked view): the IoU after that click, and the
-// click itself (label -1 when there is none to make).
-std::pair<double, Click> after_a_corrective_click(const std::string& name, const SessionOptions& so) {
+// The task's own click, then `n` more where a benchmark user would put them (the most
+// interior pixel of the larger error in the clicked view): the session after them, its IoU
+// and the last click (label -1 when there was none to make).
+struct Corrected {
+  std::unique_ptr<Session> session;
+  double iou = 0;
+  Click last{0, 0, -1};
+};
+Corrected after_corrective_clicks(const std::string& name, const SessionOptions& so, int n = 1) {
   const EvalScene* s = nullptr;
   const EvalTaskSpec& t = task(name, s, kAblation);
-  auto session = segment_from_prompts(s->scene.bundle, t.camera, {task_clicks(*s, t, 1)[0]}, sam_or_null(), so,
-                                      view_options(), "all");
-  const int view = view_of_camera(*session, t.camera);
-  const Camera& cam = session->views()[size_t(view)].camera;
+  Corrected out;
+  out.session = segment_from_prompts(s->scene.bundle, t.camera, {task_clicks(*s, t, 1)[0]}, sam_or_null(), so,
+                                     view_options(), "all");
+  const int view = view_of_camera(*out.session, t.camera);
+  const Camera& cam = out.session->views()[size_t(view)].camera;
   const std::vector<bool> truth = demo_object_mask(s->scene, t.object);
-  const auto next = corrective_click(selection_mask(s->scene.bundle.gaussians, cam, truth, cam.width, cam.height),
-                                     selection_mask(s->scene.bundle.gaussians, cam, session->selection(), cam.width, cam.height));
-  if (!next) return {0.0, Click{0, 0, -1}};
-  session->click(view, *next);
-  return {score_selection(s->scene.bundle.gaussians, s->scene.bundle.cameras, truth, session->selection()).iou, *next};
+  const Image truth_mask = selection_mask(s->scene.bundle.gaussians, cam, truth, cam.width, cam.height);
+  for (int i = 0; i < n; ++i) {
+    const auto next = corrective_click(
+        truth_mask, selection_mask(s->scene.bundle.gaussians, cam, out.session->selection(), cam.width, cam.height));
+    if (!next) break;
+    out.session->click(view, *next);
+    out.last = *next;
+  }
+  out.iou = score_selection(s->scene.bundle.gaussians, s->scene.bundle.cameras, truth, out.session->selection()).iou;
+  return out;
 }
 
 TEST(HardCases, ANegativeClickOnTheNeighbourLeavesTheClickedBook) {
@@ -459,8 +470,9 @@ TEST(HardCases, ANegativeClickOnTheNeighbourLeavesTheClickedBook) {
   SessionOptions cut_only;
   cut_only.negative_granularity = false;
   const Outcome one = run("study/book", SessionOptions(), {}, kAblation);
-  const auto [ours, click] = after_a_corrective_click("study/book", SessionOptions());
-  const double cut = after_a_corrective_click("study/book", cut_only).first;
+  const Corrected ours_run = after_corrective_clicks("study/book", SessionOptions());
+  const double ours = ours_run.iou, cut = after_corrective_clicks("study/book", cut_only).iou;
+  const Click click = ours_run.last;
   std::printf("[ hard ] study/book: one click %.1f%%, then a negative click on a neighbour %.1f%% (its region cut "
               "alone: %.1f%%)\n",
               100 * one.iou, 100 * ours, 100 * cut);
@@ -470,6 +482,22 @@ TEST(HardCases, ANegativeClickOnTheNeighbourLeavesTheClickedBook) {
   EXPECT_GT(ours, 0.85);
 }
 
+TEST(HardCases, ANegativeClickOnWhatStandsOnTheTableKeepsTheTable) {
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // The next click after one on the table is negative, on what stands on it. The table's
+  // candidate holds that thing, and the only one without it is the table top without its
+  // legs: less than the cut leaves by little, so the cut is the answer, not a finer
+  // granularity (which took the top alone and dropped 14 views: 73.6).
+  const Outcome one = run("patio/table", SessionOptions(), {}, kAblation);
+  const Corrected corrected = after_corrective_clicks("patio/table", SessionOptions());
+  const double after = corrected.iou;
+  const Click click = corrected.last;
+  std::printf("[ hard ] patio/table: one click %.1f%%, then a negative click on what stands on it %.1f%%\n", 100 * one.iou,
+              100 * after);
+  ASSERT_EQ(click.label, 0);
+  EXPECT_GT(after, 0.95);
+}
+
 TEST(HardCases, ANegativeClickBesideTheRugDoesNotCutTheRugAway) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // The next click after one on the rug is negative, on the floor the selection took just
@@ -477,7 +505,9 @@ TEST(HardCases, ANegativeClickBesideTheRugDoesNotCutTheRugAway) {
   // view (IoU 0.3); where it covers most of the view's mask, the negative click now changes
   // nothing in that view.
   const Outcome one = run("lounge/rug", SessionOptions(), {}, kAblation);
-  const auto [after, click] = after_a_corrective_click("lounge/rug", SessionOptions());
+  const Corrected corrected = after_corrective_clicks("lounge/rug", SessionOptions());
+  const double after = corrected.iou;
+  const Click click = corrected.last;
   std::printf("[ hard ] lounge/rug: one click %.1f%%, then a negative click beside it %.1f%%\n", 100 * one.iou,
               100 * after);
   ASSERT_EQ(click.label, 0);

@@ -118,14 +118,6 @@ int object_candidate(const models::SegmentResult& r, const std::vector<Click>& c
   return best;
 }
 
-// A candidate that takes in what a negative click points at is the wrong granularity where
-// that thing lies mostly inside it (a row of books, one clicked and its neighbour marked):
-// then the largest candidate that holds every positive click and no negative one (predicted
-// IoU >= min_score). Where there is none, `current` stays and *conflict is set: the view
-// cannot separate what the clicks separate. `negative_region`: what SAM segments at the
-// negative clicks (none of this where it swallows the candidate). A negative click on the
-// wall seen through a plant's gaps keeps the plant: the wall lies mostly outside it, and the
-// region cut (take_candidate) removes what it shows.
 // Whether what SAM segments at the negative clicks covers at least half of mask m: SAM
 // does not tell the marked thing from the object in that view (a negative click on the
 // floor just beside a rug segments the rug), so the negative clicks change nothing there
@@ -149,17 +141,30 @@ bool holds_a_negative(const Image& mask, const std::vector<Click>& clicks) {
   return std::any_of(clicks.begin(), clicks.end(), [&](const Click& k) { return k.label == 0 && holds(mask, k); });
 }
 
+// A negative click on a thing that lies mostly inside the view's candidate marks either a
+// sibling the candidate groups with the clicked object (a row of books, one clicked and its
+// neighbour marked) or a thing on the object (a cup on a clicked table). The largest other
+// candidate that holds every positive click and no negative one (predicted IoU >= min_score)
+// tells them apart: when it is less than half of what cutting the marked thing from the
+// candidate leaves, the rest is more siblings, and it is taken (*switched); otherwise the cut
+// (take_candidate) is the answer. Where no candidate separates them, *conflict is set.
+// `negative_region`: what SAM segments at the negative clicks; none of this where it
+// swallows the candidate. A negative click on the wall seen through a plant's gaps keeps the
+// plant: the wall lies mostly outside it, and the cut removes what it shows.
 int negative_free_candidate(const models::SegmentResult& r, int current, const std::vector<Click>& clicks,
-                            const Image* negative_region, double min_score, bool* conflict) {
+                            const Image* negative_region, double min_score, bool* conflict, bool* switched) {
   if (!negative_region || r.candidates.size() < 2) return current;
   const Image& m = r.candidates[size_t(current)];
   if (!holds_a_negative(m, clicks) || swallows(*negative_region, m)) return current;
-  size_t region = 0, inside = 0;
-  for (size_t i = 0; i < negative_region->data.size() && i < m.data.size(); ++i)
+  size_t region = 0, inside = 0, area = 0;
+  for (size_t i = 0; i < negative_region->data.size() && i < m.data.size(); ++i) {
+    const bool in_m = m.data[i] > 0.5f;
+    area += in_m;
     if (negative_region->data[i] > 0.5f) {
       ++region;
-      inside += m.data[i] > 0.5f;
+      inside += in_m;
     }
+  }
   if (region == 0 || 2 * inside < region) return current;
   int best = -1;
   size_t best_area = 0;
@@ -167,14 +172,19 @@ int negative_free_candidate(const models::SegmentResult& r, int current, const s
     const Image& o = r.candidates[c];
     if (int(c) == current || r.candidate_scores[c] < min_score) continue;
     const bool fits = std::all_of(clicks.begin(), clicks.end(), [&](const Click& k) { return holds(o, k) == (k.label == 1); });
-    const size_t area = mask_area(o);
-    if (fits && area > best_area) {
+    const size_t a = mask_area(o);
+    if (fits && a > best_area) {
       best = int(c);
-      best_area = area;
+      best_area = a;
     }
   }
-  if (best < 0 && conflict) *conflict = true;
-  return best < 0 ? current : best;
+  if (best < 0) {
+    if (conflict) *conflict = true;
+    return current;
+  }
+  if (2 * best_area >= area - inside) return current;
+  if (switched) *switched = true;
+  return best;
 }
 
 Image mask_image(const std::vector<uint8_t>& m, int w, int h) {
@@ -643,18 +653,20 @@ RoundReport Session::run_round(State& next, const State& prev) {
     decode_views(which_neg, prompts_neg, std::vector<const std::vector<float>*>(which_neg.size(), nullptr), negatives);
     decode_each_click(which_each, prompts_each);
   };
-  // SAM's choice in a clicked view, or the object candidate the prior prefers to it.
-  // Candidate c, or one without the negative clicks where c takes in what they point at
-  // (*conflict: none does).
-  auto respect_negatives = [&](const models::SegmentResult& r, int c, const ViewState& vs, bool* conflict = nullptr) {
+  // Candidate c, or one without the negative clicks where c groups what they point at with
+  // the object (negative_free_candidate; *conflict: none separates them, *switched: taken).
+  auto respect_negatives = [&](const models::SegmentResult& r, int c, const ViewState& vs, bool* conflict = nullptr,
+                               bool* switched = nullptr) {
     return o.negative_granularity ? negative_free_candidate(r, c, vs.clicks, vs.sam_negative ? &vs.sam_negative->mask : nullptr,
-                                                            o.min_object_score, conflict)
+                                                            o.min_object_score, conflict, switched)
                                   : c;
   };
-  auto clicked_candidate = [&](const models::SegmentResult& r, const ViewState& vs, bool* conflict = nullptr) {
+  // SAM's choice in a clicked view, or the object candidate the prior prefers to it.
+  auto clicked_candidate = [&](const models::SegmentResult& r, const ViewState& vs, bool* conflict = nullptr,
+                               bool* switched = nullptr) {
     return respect_negatives(
         r, o.object_prior ? object_candidate(r, vs.clicks, o.min_object_score, o.min_surroundings_share) : r.mask_index, vs,
-        conflict);
+        conflict, switched);
   };
   std::vector<size_t> clicked, others;
   double ms_repropagation = 0;
@@ -853,11 +865,16 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // the first view votes with (-1: SAM's own choice).
   const std::vector<ViewState> unjudged = fresh;
   size_t first_view = 0;
+  // Whether the first view took a candidate without the negative clicks in place of one that
+  // grouped what they mark with the object: then a view that cannot separate them is dropped,
+  // else its mask less what they mark votes (respect_negatives).
+  bool negative_switched = false;
   auto inspect_and_vote = [&](int forced_first) {
     fresh = unjudged;
     acc = VoteAccumulator(scene_.size());
     live.reset(scene_.size(), {o.tau, o.min_total_weight, o.centre_rule, {o.whole_neutral, o.whole_min_share}}, &excluded_);
     first = true;
+    negative_switched = false;
     undecided = false;
     rep.accepted = rep.dropped = 0;
     for (size_t k : order) {
@@ -884,7 +901,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
                                            vs, &conflict));
         } else {  // one pass over the mask's pixels gives the selection's coverage there and the mask's votes
           take_candidate(vs, r, clicked_candidate(r, vs, &conflict));
-          if (vs.mask_pixels > 0 && !conflict) {
+          if (vs.mask_pixels > 0 && !(conflict && negative_switched)) {
             TimeInto timed{part.mask_votes};
             mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
             raw = masked_votes(views_[k].frame, mask, o.threads, &values, &coverage);
@@ -892,7 +909,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
           }
         }
       } else {
-        take_candidate(vs, r, first && forced_first >= 0 ? forced_first : clicked_candidate(r, vs));
+        bool switched = false;
+        take_candidate(vs, r, first && forced_first >= 0 ? forced_first : clicked_candidate(r, vs, nullptr, &switched));
+        if (first) negative_switched = switched;
       }
       if (first) first_view = k;
       if (vs.mask_pixels == 0) {
@@ -900,7 +919,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         ++rep.dropped;
         continue;
       }
-      if (conflict) {  // (never the first view: it votes with its mask less the negative region)
+      if (conflict && negative_switched) {
         vs.status = ViewStatus::NegativeInside;
         ++rep.dropped;
         continue;
