@@ -461,6 +461,22 @@ Corrected after_corrective_clicks(const std::string& name, const SessionOptions&
   return out;
 }
 
+TEST(HardCases, ALaterClickAmongThePlantsLeavesDoesNotPeelThem) {
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // The third click on the patio plant lands between leaves of the plant already selected.
+  // Seeing through them peeled the leaves away, and the peeled view, voting first, made the
+  // plant's whole masks in the other views look far larger than the selection (88.3); where
+  // the selection covers the nearer things, a click is not seen through them.
+  const Corrected three = after_corrective_clicks("patio/plant", SessionOptions(), 2);
+  int peeled = 0;
+  for (const SegmentView& v : three.session->views())
+    peeled += v.name.size() > 8 && v.name.substr(v.name.size() - 8) == "_through";
+  std::printf("[ hard ] patio/plant: after three clicks %.1f%% (%d peeled views)\n", 100 * three.iou, peeled);
+  ASSERT_EQ(three.session->clicks().size(), 3u);
+  EXPECT_EQ(peeled, 0);
+  EXPECT_GT(three.iou, 0.95);
+}
+
 TEST(HardCases, ANegativeClickOnTheNeighbourLeavesTheClickedBook) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // One click on a red book in a row selects the row: SAM's choice in every view. The next

@@ -271,6 +271,14 @@ int Session::see_through_view(int view, const Click& c) {
   size_t inside = 0;
   for (uint32_t p : occ.pixels) inside += p < direct.mask.data.size() && direct.mask.data[p] > 0.5f;
   if (double(inside) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) return view;
+  // Nor where the selection so far covers them: a later click among the leaves of a plant
+  // already selected is a click on the plant, not on something behind it.
+  if (std::find(state_.selection.begin(), state_.selection.end(), true) != state_.selection.end()) {
+    const Image covered = selection_coverage(view);
+    size_t selected = 0;
+    for (uint32_t p : occ.pixels) selected += p < covered.data.size() && covered.data[p] > 0.5f;
+    if (double(selected) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) return view;
+  }
   // A view already peeled from this one that shows the clicked surface at the click is this
   // click's view too (a second click on the ball behind the fence finds a cut a little
   // deeper): a second, nearly identical view would vote the same evidence twice.
