@@ -87,6 +87,12 @@ bool surroundings(const Image& m, double min_share) {
   return borders >= 3 || (borders == 2 && double(mask_area(m)) >= min_share * double(m.data.size()));
 }
 
+// Whether mask (> 0.5) holds click k's pixel (clamped into the image).
+bool holds(const Image& mask, const Click& k) {
+  const int x = std::clamp(int(k.x), 0, mask.width - 1), y = std::clamp(int(k.y), 0, mask.height - 1);
+  return mask.at(x, y) > 0.5f;
+}
+
 // A clicked view's candidate (the user's view, or one a click was propagated to). SAM's own
 // choice, unless it looks like the surroundings (the wall or floor around the click: a pale
 // skull on a pale wall, a rug on the floor) while another candidate holding every positive
@@ -103,14 +109,9 @@ int object_candidate(const models::SegmentResult& r, const std::vector<Click>& c
   for (size_t c = 0; c < r.candidates.size(); ++c) {
     const Image& m = r.candidates[c];
     if (int(c) == r.mask_index || r.candidate_scores[c] < min_score || borders_reached(m) > 1) continue;
-    bool holds = true;
-    for (const Click& k : clicks)
-      if (k.label == 1) {
-        const int x = std::clamp(int(k.x), 0, m.width - 1), y = std::clamp(int(k.y), 0, m.height - 1);
-        holds &= m.at(x, y) > 0.5f;
-      }
+    const bool holds_all = std::all_of(clicks.begin(), clicks.end(), [&](const Click& k) { return k.label != 1 || holds(m, k); });
     const size_t area = mask_area(m);
-    if (holds && area > best_area) {
+    if (holds_all && area > best_area) {
       best = int(c);
       best_area = area;
     }
@@ -130,11 +131,6 @@ bool swallows(const Image& negative_region, const Image& m) {
       cut += negative_region.data[i] > 0.5f;
     }
   return area > 0 && 2 * cut >= area;
-}
-
-bool holds(const Image& mask, const Click& k) {
-  const int x = std::clamp(int(k.x), 0, mask.width - 1), y = std::clamp(int(k.y), 0, mask.height - 1);
-  return mask.at(x, y) > 0.5f;
 }
 
 bool holds_a_negative(const Image& mask, const std::vector<Click>& clicks) {
