@@ -119,18 +119,33 @@ int object_candidate(const models::SegmentResult& r, const std::vector<Click>& c
   return best;
 }
 
-// Whether what SAM segments at the negative clicks covers at least half of mask m: SAM
-// does not tell the marked thing from the object in that view (a negative click on the
-// floor just beside a rug segments the rug), so the negative clicks change nothing there
-// rather than cut the object away.
-bool swallows(const Image& negative_region, const Image& m) {
-  size_t area = 0, cut = 0;
-  for (size_t i = 0; i < m.data.size() && i < negative_region.data.size(); ++i)
-    if (m.data[i] > 0.5f) {
-      ++area;
-      cut += negative_region.data[i] > 0.5f;
-    }
-  return area > 0 && 2 * cut >= area;
+// Pixel overlap of two masks (> 0.5, the same size): inspection's mask against the
+// selection's rendered coverage, and a candidate against a negative click's region.
+struct Agreement {
+  double mask = 0, coverage = 0, both = 0;  // pixels (coverage: the selection's rendered area)
+  double inside = -1;                       // share of the selection inside the mask, when measured by weight
+  double iou() const { return mask + coverage - both > 0 ? both / (mask + coverage - both) : 0.0; }
+  double mask_on_selection() const { return mask > 0 ? both / mask : 0.0; }
+  double selection_inside() const { return inside >= 0 ? inside : coverage > 0 ? both / coverage : 0.0; }
+};
+
+Agreement agreement(const Image& mask, const Image& coverage) {
+  Agreement a;
+  for (size_t i = 0; i < mask.data.size(); ++i) {
+    const bool m = mask.data[i] > 0.5f, c = coverage.data[i] > 0.5f;
+    a.mask += m;
+    a.coverage += c;
+    a.both += m && c;
+  }
+  return a;
+}
+
+// Whether what SAM segments at the negative clicks covers at least half of a mask
+// (`mask_vs_region`: agreement(mask, region)): SAM does not tell the marked thing from the
+// object in that view (a negative click on the floor just beside a rug segments the rug), so
+// the negative clicks change nothing there rather than cut the object away.
+bool swallows(const Agreement& mask_vs_region) {
+  return mask_vs_region.mask > 0 && 2 * mask_vs_region.both >= mask_vs_region.mask;
 }
 
 bool holds_a_negative(const Image& mask, const std::vector<Click>& clicks) {
@@ -151,17 +166,9 @@ int negative_free_candidate(const models::SegmentResult& r, int current, const s
                             const Image* negative_region, double min_score, bool* conflict, bool* switched) {
   if (!negative_region || r.candidates.size() < 2) return current;
   const Image& m = r.candidates[size_t(current)];
-  if (!holds_a_negative(m, clicks) || swallows(*negative_region, m)) return current;
-  size_t region = 0, inside = 0, area = 0;
-  for (size_t i = 0; i < negative_region->data.size() && i < m.data.size(); ++i) {
-    const bool in_m = m.data[i] > 0.5f;
-    area += in_m;
-    if (negative_region->data[i] > 0.5f) {
-      ++region;
-      inside += in_m;
-    }
-  }
-  if (region == 0 || 2 * inside < region) return current;
+  if (!holds_a_negative(m, clicks)) return current;
+  const Agreement a = agreement(m, *negative_region);  // a.coverage: the region, a.both: its part inside m
+  if (swallows(a) || a.coverage == 0 || 2 * a.both < a.coverage) return current;
   int best = -1;
   size_t best_area = 0;
   for (size_t c = 0; c < r.candidates.size(); ++c) {
@@ -178,7 +185,7 @@ int negative_free_candidate(const models::SegmentResult& r, int current, const s
     if (conflict) *conflict = true;
     return current;
   }
-  if (2 * best_area >= area - inside) return current;
+  if (2 * double(best_area) >= a.mask - a.both) return current;
   if (switched) *switched = true;
   return best;
 }
@@ -310,25 +317,6 @@ bool Session::undo() {
 
 namespace {
 
-struct Agreement {
-  double mask = 0, coverage = 0, both = 0;  // pixels (coverage: the selection's rendered area)
-  double inside = -1;                       // share of the selection inside the mask, when measured by weight
-  double iou() const { return mask + coverage - both > 0 ? both / (mask + coverage - both) : 0.0; }
-  double mask_on_selection() const { return mask > 0 ? both / mask : 0.0; }
-  double selection_inside() const { return inside >= 0 ? inside : coverage > 0 ? both / coverage : 0.0; }
-};
-
-Agreement agreement(const Image& mask, const Image& coverage) {
-  Agreement a;
-  for (size_t i = 0; i < mask.data.size(); ++i) {
-    const bool m = mask.data[i] > 0.5f, c = coverage.data[i] > 0.5f;
-    a.mask += m;
-    a.coverage += c;
-    a.both += m && c;
-  }
-  return a;
-}
-
 // Tiles the selection can reach in a view: the bounding box of its Gaussians' 3-sigma
 // extents (largest axis) around their projected centres. A coverage render needs no others.
 // `members`: a superset of the Gaussians with values > 0 (the others are not visited).
@@ -426,7 +414,7 @@ Image whole_band(const models::SegmentResult& r, int c, const Image* cut, double
 
 void take_candidate(ViewState& vs, const models::SegmentResult& r, int c) {
   const Image& m = r.candidates.empty() ? r.mask : r.candidates[size_t(c)];
-  const Image* cut = vs.sam_negative && !swallows(vs.sam_negative->mask, m) ? &vs.sam_negative->mask : nullptr;
+  const Image* cut = vs.sam_negative && !swallows(agreement(m, vs.sam_negative->mask)) ? &vs.sam_negative->mask : nullptr;
   vs.mask.resize(m.data.size());
   vs.mask_pixels = 0;
   for (size_t i = 0; i < m.data.size(); ++i) {
@@ -585,10 +573,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       bool part_of_each = double(union_area) >= o.min_union_growth * double(joint_area) && joint_area > 0;
       for (const Image* m : own) {
         if (!part_of_each) break;
-        size_t held = 0;
-        for (size_t p = 0; p < together.data.size() && p < m->data.size(); ++p)
-          held += together.data[p] > 0.5f && m->data[p] > 0.5f;
-        part_of_each = double(held) >= 0.9 * double(joint_area);
+        part_of_each = agreement(together, *m).both >= 0.9 * double(joint_area);
       }
       if (!surroundings(together, o.min_surroundings_share) &&
           double(joint_area) <= o.max_joint_growth * double(union_area) && !part_of_each)
