@@ -76,13 +76,13 @@ int run_sam(const std::vector<std::string>& argv) {
   }
   models::SegmentResult r = predictor.predict(clicks, previous.empty() ? nullptr : &previous);
   double dec_ms = predictor.last_timings().decoder_ms;
-  write_png(out, r.mask);
-  if (args.has("save-logits")) write_floats(args.get("save-logits"), r.low_res_logits);
+  write_png(out, to_image(r.mask()));
+  if (args.has("save-logits")) write_floats(args.get("save-logits"), r.low_res_logits());
   if (args.has("overlay")) {
     Image ov = img;
     for (int y = 0; y < img.height; ++y)
       for (int x = 0; x < img.width; ++x)
-        if (r.mask.at(x, y) > 0.5f) {
+        if (r.mask().at(x, y)) {
           ov.at(x, y, 0) = 0.5f * ov.at(x, y, 0) + 0.5f;
           ov.at(x, y, 1) *= 0.5f;
           ov.at(x, y, 2) *= 0.5f;
@@ -99,15 +99,15 @@ int run_sam(const std::vector<std::string>& argv) {
     write_png(args.get("overlay"), ov);
   }
   size_t on = 0;
-  for (float v : r.mask.data) on += v > 0.5f;
+  for (uint8_t v : r.mask().data) on += v;
   std::printf("image:          %s (%dx%d)\n", image_path.c_str(), img.width, img.height);
   std::printf("iou prediction: %.4f (mask %d of the decoder's outputs)\n", r.score, r.mask_index);
-  std::printf("mask:           %zu pixels (%.1f %%) -> %s\n", on, 100.0 * on / r.mask.data.size(), out.c_str());
+  std::printf("mask:           %zu pixels (%.1f %%) -> %s\n", on, 100.0 * on / r.mask().data.size(), out.c_str());
   for (size_t c = 0; c < r.candidates.size(); ++c) {  // every candidate, for inspection
     size_t px = 0;
-    for (float v : r.candidates[c].data) px += v > 0.5f;
+    for (uint8_t v : r.candidates[c].data) px += v;
     std::printf("candidate %zu:    iou prediction %.4f, %zu pixels (%.1f %%)\n", c, r.candidate_scores[c], px,
-                100.0 * px / r.mask.data.size());
+                100.0 * px / r.mask().data.size());
   }
   std::printf("timings:        load %.0f ms, preprocess %.1f ms, encoder %.1f ms%s, decoder %.1f ms\n", t_load,
               enc.preprocess_ms, enc.encoder_ms, enc.from_cache ? " (cached embedding)" : "", dec_ms);

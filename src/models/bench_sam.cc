@@ -103,7 +103,7 @@ int cmd_time(const Options& o) {
         SamTimings t;
         SegmentResult first = model.decode(e, p, nullptr, &t);
         dec.push_back(t.decoder_ms);
-        model.decode(e, p, &first.low_res_logits, &t);
+        model.decode(e, p, &first.low_res_logits(), &t);
         dec.push_back(t.decoder_ms);
       }
   }

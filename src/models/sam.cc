@@ -367,7 +367,7 @@ AxisTaps mask_axis_taps(int low, int model_size, int cropped, int out) {
 }
 
 // A low-res candidate (logits, low x low) as a 0/1 mask at the original image size.
-Image candidate_mask(const float* logits, int low, const AxisTaps& tx, const AxisTaps& ty) {
+Mask candidate_mask(const float* logits, int low, const AxisTaps& tx, const AxisTaps& ty) {
   const int w = int(tx.start.size()), h = int(ty.start.size());
   std::vector<float> rows(size_t(low) * w);
   for (int y = 0; y < low; ++y)
@@ -379,7 +379,7 @@ Image candidate_mask(const float* logits, int low, const AxisTaps& tx, const Axi
       if (k[2] != 0) v += k[2] * r[2];
       rows[size_t(y) * w + x] = v;
     }
-  Image m(w, h, 1);
+  Mask m(w, h);
   for (int y = 0; y < h; ++y) {
     const auto& k = ty.w[size_t(y)];
     const float* r0 = rows.data() + size_t(ty.start[size_t(y)]) * w;
@@ -387,7 +387,7 @@ Image candidate_mask(const float* logits, int low, const AxisTaps& tx, const Axi
       float v = k[0] * r0[x];
       if (k[1] != 0) v += k[1] * r0[x + w];
       if (k[2] != 0) v += k[2] * r0[x + 2 * w];
-      m.data[size_t(y) * w + x] = v > 0.f ? 1.f : 0.f;
+      m.data[size_t(y) * w + x] = v > 0.f;
     }
   }
   return m;
@@ -425,10 +425,10 @@ void candidates_before_selection(const std::vector<std::string>& taps, const Axi
     c.candidate_low_res.emplace_back(logits, logits + plane);
     if (pred[size_t(group[i])] > pred[size_t(group[c.mask_index])]) c.mask_index = int(i);
   }
-  if (c.candidate_low_res[size_t(c.mask_index)] != r.low_res_logits) return;  // not the pattern assumed
+  if (c.candidate_low_res[size_t(c.mask_index)] != r.low_res_logits()) return;  // not the pattern assumed
   // The choice's mask is already made (by the graph, or by the same upsampling).
   for (size_t i = 0; i < group.size(); ++i)
-    c.candidates.push_back(int(i) == c.mask_index ? r.mask : candidate_mask(c.candidate_low_res[i].data(), low, tx, ty));
+    c.candidates.push_back(int(i) == c.mask_index ? r.mask() : candidate_mask(c.candidate_low_res[i].data(), low, tx, ty));
   r.mask_index = c.mask_index;
   r.candidates = std::move(c.candidates);
   r.candidate_scores = std::move(c.candidate_scores);
@@ -632,12 +632,12 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
   r.low_res_size = lw;
   for (int64_t c = 0; c < k; ++c) {
     if (masks) {
-      Image cand(emb.image_width, emb.image_height, 1);
+      Mask cand(emb.image_width, emb.image_height);
       const size_t off = size_t(c) * emb.image_width * emb.image_height;
       if (masks->dtype == DType::Float32)
-        for (size_t i = 0; i < cand.data.size(); ++i) cand.data[i] = masks->data<float>()[off + i] > 0.f ? 1.f : 0.f;
+        for (size_t i = 0; i < cand.data.size(); ++i) cand.data[i] = masks->data<float>()[off + i] > 0.f;
       else
-        for (size_t i = 0; i < cand.data.size(); ++i) cand.data[i] = masks->data<uint8_t>()[off + i] ? 1.f : 0.f;
+        for (size_t i = 0; i < cand.data.size(); ++i) cand.data[i] = masks->data<uint8_t>()[off + i] != 0;
       r.candidates.push_back(std::move(cand));
     } else {
       r.candidates.push_back(candidate_mask(lowf.data() + size_t(c) * plane, lw, tx, ty));
@@ -645,15 +645,13 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
     r.candidate_scores.push_back(iou[size_t(c)]);
     r.candidate_low_res.emplace_back(lowf.begin() + c * plane, lowf.begin() + (c + 1) * plane);
   }
-  r.mask = r.candidates[size_t(r.mask_index)];
-  r.low_res_logits = r.candidate_low_res[size_t(r.mask_index)];
   if (k == 1 && impl_->taps.size() == 2) candidates_before_selection(impl_->taps, tx, ty, outs, n, r);
   if (timings) timings->decoder_ms = now_ms() - t0;
   return r;
 }
 
 
-Image SamModel::mask_from_low_res(const SamEmbedding& emb, const std::vector<float>& logits) const {
+Mask SamModel::mask_from_low_res(const SamEmbedding& emb, const std::vector<float>& logits) const {
   const int low = int(std::lround(std::sqrt(double(logits.size()))));
   if (low <= 0 || size_t(low) * low != logits.size())
     throw Error("SAM: a low-res mask has " + std::to_string(logits.size()) + " values, not a square grid");

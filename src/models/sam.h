@@ -84,7 +84,7 @@ class SamModel {
   // A low-res mask (SegmentResult::low_res_logits) as a 0/1 mask over the embedded image,
   // upsampled as SAM's export does (bilinear to the model's input size, cropped, bilinear
   // to the image). A single-mask decoder's other candidates are made this way.
-  Image mask_from_low_res(const SamEmbedding& embedding, const std::vector<float>& low_res_logits) const;
+  Mask mask_from_low_res(const SamEmbedding& embedding, const std::vector<float>& low_res_logits) const;
 
  private:
   struct Impl;

@@ -6,6 +6,7 @@
 
 #include "core/click.h"
 #include "core/image.h"
+#include "core/mask.h"
 #include "models/feature_map.h"
 
 namespace isegman::models {
@@ -17,16 +18,18 @@ namespace isegman::models {
 using Click = isegman::Click;
 
 struct SegmentResult {
-  Image mask;                      // width x height of the image, 1 channel, values 0 or 1
-  float score = 0;                 // the model's IoU prediction for the mask
-  std::vector<float> low_res_logits;  // low_res_size^2 logits over the padded model frame
-  int low_res_size = 0;               // 256 for SAM
-  int mask_index = 0;                 // which of the decoder's candidate masks was chosen
-  // Every candidate the decoder returned (SAM's multimask output: whole, part, subpart),
-  // with its predicted IoU, so a caller can choose by other evidence.
-  std::vector<Image> candidates;
+  float score = 0;                 // the model's IoU prediction for its chosen mask
+  int low_res_size = 0;            // 256 for SAM
+  int mask_index = 0;              // which candidate the decoder chose
+  // Every candidate the decoder returned (SAM's multimask output: whole, part, subpart) at
+  // the image's size, with its predicted IoU and its low_res_size^2 logits over the padded
+  // model frame, so a caller can choose by other evidence and refine in a later round.
+  std::vector<Mask> candidates;
   std::vector<float> candidate_scores;
   std::vector<std::vector<float>> candidate_low_res;
+
+  const Mask& mask() const { return candidates[size_t(mask_index)]; }
+  const std::vector<float>& low_res_logits() const { return candidate_low_res[size_t(mask_index)]; }
 };
 
 class Segmenter2D {

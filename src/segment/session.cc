@@ -57,24 +57,24 @@ struct TimeInto {
   ~TimeInto() { into += ms_since(start); }
 };
 
-size_t mask_area(const Image& m) {
+size_t mask_area(const Mask& m) {
   size_t n = 0;
-  for (float v : m.data) n += v > 0.5f;
+  for (uint8_t v : m.data) n += v != 0;
   return n;
 }
 
 // Image borders (0-4) a mask reaches.
-int borders_reached(const Image& m) {
+int borders_reached(const Mask& m) {
   const int w = m.width, h = m.height;
   if (w == 0 || h == 0) return 0;
   bool top = false, bottom = false, left = false, right = false;
   for (int x = 0; x < w; ++x) {
-    top |= m.at(x, 0) > 0.5f;
-    bottom |= m.at(x, h - 1) > 0.5f;
+    top |= m.at(x, 0);
+    bottom |= m.at(x, h - 1);
   }
   for (int y = 0; y < h; ++y) {
-    left |= m.at(0, y) > 0.5f;
-    right |= m.at(w - 1, y) > 0.5f;
+    left |= m.at(0, y);
+    right |= m.at(w - 1, y);
   }
   return int(top) + int(bottom) + int(left) + int(right);
 }
@@ -82,15 +82,15 @@ int borders_reached(const Image& m) {
 // A mask that looks like the surroundings rather than an object: it runs past three or four
 // image borders, or past two while covering `min_share` of the image (a floor whose far edge
 // is in view).
-bool surroundings(const Image& m, double min_share) {
+bool surroundings(const Mask& m, double min_share) {
   const int borders = borders_reached(m);
   return borders >= 3 || (borders == 2 && double(mask_area(m)) >= min_share * double(m.data.size()));
 }
 
-// Whether mask (> 0.5) holds click k's pixel (clamped into the image).
-bool holds(const Image& mask, const Click& k) {
+// Whether mask holds click k's pixel (clamped into the image).
+bool holds(const Mask& mask, const Click& k) {
   const int x = std::clamp(int(k.x), 0, mask.width - 1), y = std::clamp(int(k.y), 0, mask.height - 1);
-  return mask.at(x, y) > 0.5f;
+  return mask.at(x, y);
 }
 
 // A clicked view's candidate (the user's view, or one a click was propagated to). SAM's own
@@ -107,7 +107,7 @@ int object_candidate(const models::SegmentResult& r, const std::vector<Click>& c
   int best = r.mask_index;
   size_t best_area = 0;
   for (size_t c = 0; c < r.candidates.size(); ++c) {
-    const Image& m = r.candidates[c];
+    const Mask& m = r.candidates[c];
     if (int(c) == r.mask_index || r.candidate_scores[c] < min_score || borders_reached(m) > 1) continue;
     const bool holds_all = std::all_of(clicks.begin(), clicks.end(), [&](const Click& k) { return k.label != 1 || holds(m, k); });
     const size_t area = mask_area(m);
@@ -119,8 +119,12 @@ int object_candidate(const models::SegmentResult& r, const std::vector<Click>& c
   return best;
 }
 
-// Pixel overlap of two masks (> 0.5, the same size): inspection's mask against the
-// selection's rendered coverage, and a candidate against a negative click's region.
+// A pixel of a mask: a SAM candidate (bytes) or a rendered or voting mask (floats > 0.5).
+bool on(const Mask& m, size_t i) { return m.data[i] != 0; }
+bool on(const Image& m, size_t i) { return m.data[i] > 0.5f; }
+
+// Pixel overlap of two masks (the same size): inspection's mask against the selection's
+// rendered coverage, and a candidate against a negative click's region.
 struct Agreement {
   double mask = 0, coverage = 0, both = 0;  // pixels (coverage: the selection's rendered area)
   double inside = -1;                       // share of the selection inside the mask, when measured by weight
@@ -129,10 +133,11 @@ struct Agreement {
   double selection_inside() const { return inside >= 0 ? inside : coverage > 0 ? both / coverage : 0.0; }
 };
 
-Agreement agreement(const Image& mask, const Image& coverage) {
+template <class M, class C>
+Agreement agreement(const M& mask, const C& coverage) {
   Agreement a;
   for (size_t i = 0; i < mask.data.size(); ++i) {
-    const bool m = mask.data[i] > 0.5f, c = coverage.data[i] > 0.5f;
+    const bool m = on(mask, i), c = on(coverage, i);
     a.mask += m;
     a.coverage += c;
     a.both += m && c;
@@ -148,7 +153,7 @@ bool swallows(const Agreement& mask_vs_region) {
   return mask_vs_region.mask > 0 && 2 * mask_vs_region.both >= mask_vs_region.mask;
 }
 
-bool holds_a_negative(const Image& mask, const std::vector<Click>& clicks) {
+bool holds_a_negative(const Mask& mask, const std::vector<Click>& clicks) {
   return std::any_of(clicks.begin(), clicks.end(), [&](const Click& k) { return k.label == 0 && holds(mask, k); });
 }
 
@@ -163,16 +168,16 @@ bool holds_a_negative(const Image& mask, const std::vector<Click>& clicks) {
 // swallows the candidate. A negative click on the wall seen through a plant's gaps keeps the
 // plant: the wall lies mostly outside it, and the cut removes what it shows.
 int negative_free_candidate(const models::SegmentResult& r, int current, const std::vector<Click>& clicks,
-                            const Image* negative_region, double min_score, bool* conflict, bool* switched) {
+                            const Mask* negative_region, double min_score, bool* conflict, bool* switched) {
   if (!negative_region || r.candidates.size() < 2) return current;
-  const Image& m = r.candidates[size_t(current)];
+  const Mask& m = r.candidates[size_t(current)];
   if (!holds_a_negative(m, clicks)) return current;
   const Agreement a = agreement(m, *negative_region);  // a.coverage: the region, a.both: its part inside m
   if (swallows(a) || a.coverage == 0 || 2 * a.both < a.coverage) return current;
   int best = -1;
   size_t best_area = 0;
   for (size_t c = 0; c < r.candidates.size(); ++c) {
-    const Image& o = r.candidates[c];
+    const Mask& o = r.candidates[c];
     if (int(c) == current || r.candidate_scores[c] < min_score) continue;
     const bool fits = std::all_of(clicks.begin(), clicks.end(), [&](const Click& k) { return holds(o, k) == (k.label == 1); });
     const size_t a = mask_area(o);
@@ -272,7 +277,7 @@ int Session::see_through_view(int view, const Click& c) {
   // of the same plant), they are part of what the user means: no peeling.
   const models::SegmentResult direct = sam_->decode(base.embedding, {c});
   size_t inside = 0;
-  for (uint32_t p : occ.pixels) inside += p < direct.mask.data.size() && direct.mask.data[p] > 0.5f;
+  for (uint32_t p : occ.pixels) inside += p < direct.mask().data.size() && direct.mask().data[p];
   if (double(inside) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) return view;
   // Nor where the selection so far covers them: a later click among the leaves of a plant
   // already selected is a click on the plant, not on something behind it.
@@ -392,38 +397,38 @@ int choose(const models::SegmentResult& r, const Image* coverage, int min_pixels
 // What the larger candidates that contain candidate `c` (>= 90 % of it, at most max_growth
 // times its area, predicted IoU >= min_score) add around it, less the negative clicks'
 // region: the view cannot tell part from whole there. Empty when nothing is added.
-Image whole_band(const models::SegmentResult& r, int c, const Image* cut, double max_growth, double min_score) {
+Image whole_band(const models::SegmentResult& r, int c, const Mask* cut, double max_growth, double min_score) {
   if (r.candidates.size() < 2) return {};
-  const Image& m = r.candidates[size_t(c)];
+  const Mask& m = r.candidates[size_t(c)];
   const size_t a = mask_area(m);
   Image band;
   for (size_t o = 0; o < r.candidates.size(); ++o) {
-    const Image& w = r.candidates[o];
+    const Mask& w = r.candidates[o];
     if (int(o) == c || r.candidate_scores[o] < min_score || w.data.size() != m.data.size()) continue;
     const size_t wa = mask_area(w);
     if (wa <= a || double(wa) > max_growth * double(a)) continue;
     size_t inside = 0;
-    for (size_t i = 0; i < m.data.size(); ++i) inside += m.data[i] > 0.5f && w.data[i] > 0.5f;
+    for (size_t i = 0; i < m.data.size(); ++i) inside += m.data[i] && w.data[i];
     if (double(inside) < 0.9 * double(a)) continue;
     if (band.empty()) band = Image(m.width, m.height, 1);
     for (size_t i = 0; i < m.data.size(); ++i)
-      if (w.data[i] > 0.5f && !(m.data[i] > 0.5f) && !(cut && cut->data[i] > 0.5f)) band.data[i] = 1.f;
+      if (w.data[i] && !m.data[i] && !(cut && cut->data[i])) band.data[i] = 1.f;
   }
   return band;
 }
 
 void take_candidate(ViewState& vs, const models::SegmentResult& r, int c) {
-  const Image& m = r.candidates.empty() ? r.mask : r.candidates[size_t(c)];
-  const Image* cut = vs.sam_negative && !swallows(agreement(m, vs.sam_negative->mask)) ? &vs.sam_negative->mask : nullptr;
+  const Mask& m = r.candidates[size_t(c)];
+  const Mask* cut = vs.sam_negative && !swallows(agreement(m, vs.sam_negative->mask())) ? &vs.sam_negative->mask() : nullptr;
   vs.mask.resize(m.data.size());
   vs.mask_pixels = 0;
   for (size_t i = 0; i < m.data.size(); ++i) {
-    vs.mask[i] = m.data[i] > 0.5f && !(cut && cut->data[i] > 0.5f);
+    vs.mask[i] = m.data[i] && !(cut && cut->data[i]);
     vs.mask_pixels += vs.mask[i];
   }
   vs.candidate = c;
-  vs.sam_score = r.candidate_scores.empty() ? r.score : r.candidate_scores[size_t(c)];
-  vs.low_res = r.candidate_low_res.empty() ? r.low_res_logits : r.candidate_low_res[size_t(c)];
+  vs.sam_score = r.candidate_scores[size_t(c)];
+  vs.low_res = r.candidate_low_res[size_t(c)];
 }
 
 // A box around the rendered selection and its most interior pixel (largest chamfer
@@ -542,45 +547,47 @@ RoundReport Session::run_round(State& next, const State& prev) {
       }
     const auto single = decode(view_of, alone, {});
     for (size_t i = 0, j = 0; i < which.size(); ++i) {
-      models::SegmentResult merged;
-      std::vector<const Image*> own;  // each click's mask alone
+      Mask united;  // the union of the clicks' own masks, with the lowest score and the highest logits
+      float united_score = 0;
+      std::vector<float> united_low;
+      std::vector<const Mask*> own;  // each click's mask alone
       for (size_t c = 0; c < prompts[i].size(); ++c, ++j) {
         const models::SegmentResult& r = *single[j];
         const int pick = o.object_prior ? object_candidate(r, {prompts[i][c]}, o.min_object_score, o.min_surroundings_share)
                                         : r.mask_index;
-        const Image& m = r.candidates.empty() ? r.mask : r.candidates[size_t(pick)];
+        const Mask& m = r.candidates[size_t(pick)];
         own.push_back(&m);
-        const float score = r.candidate_scores.empty() ? r.score : r.candidate_scores[size_t(pick)];
-        const std::vector<float>& low = r.candidate_low_res.empty() ? r.low_res_logits : r.candidate_low_res[size_t(pick)];
+        const float score = r.candidate_scores[size_t(pick)];
+        const std::vector<float>& low = r.candidate_low_res[size_t(pick)];
         if (c == 0) {
-          merged.mask = m;
-          merged.score = score;
-          merged.low_res_logits = low;
-          merged.low_res_size = r.low_res_size;
+          united = m;
+          united_score = score;
+          united_low = low;
           continue;
         }
-        for (size_t p = 0; p < m.data.size() && p < merged.mask.data.size(); ++p)
-          merged.mask.data[p] = std::max(merged.mask.data[p], m.data[p]);
-        merged.score = std::min(merged.score, score);
-        for (size_t p = 0; p < low.size() && p < merged.low_res_logits.size(); ++p)
-          merged.low_res_logits[p] = std::max(merged.low_res_logits[p], low[p]);
+        for (size_t p = 0; p < m.data.size() && p < united.data.size(); ++p) united.data[p] |= m.data[p];
+        united_score = std::min(united_score, score);
+        for (size_t p = 0; p < low.size() && p < united_low.size(); ++p) united_low[p] = std::max(united_low[p], low[p]);
       }
       // SAM's joint answer stands unless it looks like the surroundings, is far larger than
       // what the clicks segment alone, or is a part of what each click segments alone.
       const models::SegmentResult& joint = *results[which[i]];
-      const Image& together = joint.candidates.empty() ? joint.mask : joint.candidates[size_t(joint.mask_index)];
-      const size_t joint_area = mask_area(together), union_area = mask_area(merged.mask);
+      const Mask& together = joint.mask();
+      const size_t joint_area = mask_area(together), union_area = mask_area(united);
       bool part_of_each = double(union_area) >= o.min_union_growth * double(joint_area) && joint_area > 0;
-      for (const Image* m : own) {
+      for (const Mask* m : own) {
         if (!part_of_each) break;
         part_of_each = agreement(together, *m).both >= 0.9 * double(joint_area);
       }
       if (!surroundings(together, o.min_surroundings_share) &&
           double(joint_area) <= o.max_joint_growth * double(union_area) && !part_of_each)
         continue;
-      merged.candidates = {merged.mask};
-      merged.candidate_scores = {merged.score};
-      merged.candidate_low_res = {merged.low_res_logits};
+      models::SegmentResult merged;
+      merged.score = united_score;
+      merged.low_res_size = joint.low_res_size;
+      merged.candidates = {std::move(united)};
+      merged.candidate_scores = {united_score};
+      merged.candidate_low_res = {std::move(united_low)};
       results[which[i]] = std::make_shared<const models::SegmentResult>(std::move(merged));
     }
   };
@@ -646,7 +653,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // the object (negative_free_candidate; *conflict: none separates them, *switched: taken).
   auto respect_negatives = [&](const models::SegmentResult& r, int c, const ViewState& vs, bool* conflict = nullptr,
                                bool* switched = nullptr) {
-    return o.negative_granularity ? negative_free_candidate(r, c, vs.clicks, vs.sam_negative ? &vs.sam_negative->mask : nullptr,
+    return o.negative_granularity ? negative_free_candidate(r, c, vs.clicks, vs.sam_negative ? &vs.sam_negative->mask() : nullptr,
                                                             o.min_object_score, conflict, switched)
                                   : c;
   };
@@ -682,14 +689,14 @@ RoundReport Session::run_round(State& next, const State& prev) {
       // Within the finest candidate that holds the click: SAM's choice at a bicycle's tube is
       // the whole bicycle with the wall inside its frame, its finest mask the tube.
       const int cx = int(std::floor(uc.click.x)), cy = int(std::floor(uc.click.y));
-      const Image* finest = nullptr;
-      for (const Image& c : r.candidates)
+      const Mask* finest = nullptr;
+      for (const Mask& c : r.candidates)
         if (c.width == surface.width && c.height == surface.height && cx >= 0 && cy >= 0 && cx < c.width &&
-            cy < c.height && c.at(cx, cy) > 0.5f && (!finest || mask_area(c) < mask_area(*finest)))
+            cy < c.height && c.at(cx, cy) && (!finest || mask_area(c) < mask_area(*finest)))
           finest = &c;
       if (finest)
         for (size_t p = 0; p < surface.data.size(); ++p)
-          if (!(finest->data[p] > 0.5f)) surface.data[p] = 0.f;
+          if (!finest->data[p]) surface.data[p] = 0.f;
       sources[i] = interior_anchor(surface, view.depth, view.alpha, uc.click, o.interior_anchor);
       moved |= sources[i].x != uc.click.x || sources[i].y != uc.click.y;
     }
@@ -799,7 +806,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       TimeInto timed{part.band};
       // Only Gaussians wholly outside the mask: one it partly shows (a neighbour's edge
       // blended into the mask's border) keeps the band's weight against it.
-      const Image band = whole_band(*vs.sam, vs.candidate, vs.sam_negative ? &vs.sam_negative->mask : nullptr,
+      const Image band = whole_band(*vs.sam, vs.candidate, vs.sam_negative ? &vs.sam_negative->mask() : nullptr,
                                     o.max_whole_growth, o.min_granularity_score);
       for (float v : band.data) vs.whole_pixels += v > 0.5f;
       if (vs.whole_pixels > 0) {
@@ -951,7 +958,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
           Image best_mask;
           ViewVotes best_votes;
           for (size_t c = 0; c < r.candidates.size(); ++c) {
-            const Image& w = r.candidates[c];
+            const Mask& w = r.candidates[c];
             if (int(c) == vs.candidate || r.candidate_scores[c] < o.min_granularity_score || w.data.size() != mask.data.size() ||
                 (o.object_prior && surroundings(w, o.min_surroundings_share)))
               continue;
@@ -1011,7 +1018,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     if ((larger >= 2 && larger > rep.accepted - 1) || selects_nothing) {
       const int used = fresh[first_view].candidate;
       const double first_gated = fresh[first_view].gated_share;
-      const size_t used_area = mask_area(r.candidates.empty() ? r.mask : r.candidates[size_t(used)]);
+      const size_t used_area = mask_area(r.candidates[size_t(used)]);
       // A try: the first view's candidate (-1: as the first pass chose), and whether its
       // whole mask votes or the clicked depth layer alone. The pass most views accept is kept.
       struct Try {
