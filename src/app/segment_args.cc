@@ -47,6 +47,9 @@ const char* const kSegmentOptionsHelp =
     "                                selects no Gaussian (a mark finer than the Gaussians that paint it)\n"
     "  --no-grow-to-selection        drop a clicked view whose mask is a part of the selection even when\n"
     "                                its larger SAM candidate holding that part agrees with the selection\n"
+    "  --no-part-growth              grow only masks that fail inspection, and only into SAM's candidates\n"
+    "                                for the click (default: also a passing mask that holds < 80 % of the\n"
+    "                                selection, and also into SAM's mask prompted from the selection)\n"
 
     "  --no-object-prior             keep SAM's choice in the clicked view even when it runs past three\n"
     "                                image borders (or two, over 30 % of the image) and a candidate\n"
@@ -79,7 +82,7 @@ const std::set<std::string>& segment_value_flags() {
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "keep-whole-islands",
-                                          "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
+                                          "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives", "sam-all-clicks", "no-negative-granularity"};
   return f;
 }
@@ -118,6 +121,10 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.whole_mask_retry = !args.has("no-whole-mask-retry");
   s.session.empty_selection_retry = !args.has("no-empty-selection-retry");
   s.session.grow_to_selection = !args.has("no-grow-to-selection");
+  if (args.has("no-part-growth")) {
+    s.session.part_of_selection = s.session.min_selection_inside;
+    s.session.selection_prompt_growth = false;
+  }
   s.session.whole_neutral = !args.has("no-whole-neutral");
   s.session.object_prior = !args.has("no-object-prior");
   s.session.propagation.hidden_fallback = args.has("hidden-fallback");

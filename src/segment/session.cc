@@ -943,20 +943,40 @@ RoundReport Session::run_round(State& next, const State& prev) {
           return a;
         };
         Agreement a = measure(mask, raw, coverage);
-        if (!passes(a) && o.grow_to_selection && have_raw && a.mask_on_selection() >= o.min_mask_on_selection &&
-            a.selection_inside() < o.min_selection_inside) {
+        const bool failing = !passes(a);
+        if (o.grow_to_selection && have_raw && a.mask_on_selection() >= o.min_mask_on_selection &&
+            a.selection_inside() < (failing ? o.min_selection_inside : o.part_of_selection)) {
           // The mask is a part of the selection (the ladle's bowl where the clicked view
           // segmented the whole ladle): this view's larger candidate holding it may be the
           // selection's granularity. The one of highest IoU with the rendered selection
           // votes instead, if it passes inspection and is close to the selection (IoU at
-          // least min_grown_iou): one that merely holds it may add what a wrong first view
-          // added to the selection (the bush over the pot) and confirm it.
+          // least min_grown_iou, and above the mask's own where that passes): one that merely
+          // holds it may add what a wrong first view added to the selection (the bush over
+          // the pot) and confirm it.
           const std::vector<float>& values = live.values();  // (timed as inspection's agreement)
           const size_t area = size_t(vs.mask_pixels);
-          double best_iou = -1;
+          double best_iou = failing ? -1 : a.iou();
+          bool grew = false;
           ViewState best;
           Image best_mask;
           ViewVotes best_votes;
+          auto consider = [&](ViewState grown) {
+            size_t held = 0;
+            for (size_t i = 0; i < mask.data.size(); ++i) held += mask.data[i] > 0.5f && grown.mask[i];
+            if (size_t(grown.mask_pixels) <= area || double(grown.mask_pixels) > o.max_whole_growth * double(area) ||
+                double(held) < 0.9 * double(area))
+              return;
+            Image m = mask_image(grown.mask, views_[k].camera.width, views_[k].camera.height), cov;
+            ViewVotes votes = masked_votes(views_[k].frame, m, o.threads, &values, &cov);
+            const Agreement g = measure(m, votes, cov);
+            if (!passes(g) || g.iou() < o.min_grown_iou || g.iou() <= best_iou) return;
+            best_iou = g.iou();
+            a = g;
+            best = std::move(grown);
+            best_mask = std::move(m);
+            best_votes = std::move(votes);
+            grew = true;
+          };
           for (size_t c = 0; c < r.candidates.size(); ++c) {
             const Mask& w = r.candidates[c];
             if (int(c) == vs.candidate || r.candidate_scores[c] < o.min_granularity_score || w.data.size() != mask.data.size() ||
@@ -964,22 +984,23 @@ RoundReport Session::run_round(State& next, const State& prev) {
               continue;
             ViewState grown = vs;
             take_candidate(grown, r, int(c));
-            size_t held = 0;
-            for (size_t i = 0; i < mask.data.size(); ++i) held += mask.data[i] > 0.5f && grown.mask[i];
-            if (size_t(grown.mask_pixels) <= area || double(grown.mask_pixels) > o.max_whole_growth * double(area) ||
-                double(held) < 0.9 * double(area))
-              continue;
-            Image m = mask_image(grown.mask, views_[k].camera.width, views_[k].camera.height), cov;
-            ViewVotes votes = masked_votes(views_[k].frame, m, o.threads, &values, &cov);
-            const Agreement g = measure(m, votes, cov);
-            if (!passes(g) || g.iou() < o.min_grown_iou || g.iou() <= best_iou) continue;
-            best_iou = g.iou();
-            a = g;
-            best = std::move(grown);
-            best_mask = std::move(m);
-            best_votes = std::move(votes);
+            consider(std::move(grown));
           }
-          if (best_iou >= 0) {
+          // SAM prompted from the selection itself, as a view no click reached is: a click
+          // near the frame's edge on a pillar leaving it segments a piece of the pillar in
+          // each of its three candidates, the selection's box the part in view.
+          if (o.selection_prompt_growth) {
+            std::vector<models::Click> prompt;
+            const Image full = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
+            if (prompt_from_coverage(full, prompt)) {
+              ViewState grown = vs;
+              grown.sam = std::make_shared<const models::SegmentResult>(sam_->decode(views_[k].embedding, prompt));
+              take_candidate(grown, *grown.sam, grown.sam->mask_index);
+              grown.from_selection = true;
+              consider(std::move(grown));
+            }
+          }
+          if (grew) {
             vs = std::move(best);
             mask = std::move(best_mask);
             raw = std::move(best_votes);

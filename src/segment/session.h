@@ -83,6 +83,12 @@ struct SessionOptions {
   // ... and only when it is close to the rendered selection (IoU).
   bool grow_to_selection = true;
   double min_grown_iou = 0.8;
+  // ... also for a mask that passes but holds less than this share of the selection (a
+  // piece of a pillar where a click lands near the frame's edge), when what is tried agrees
+  // better with the selection; and what is tried includes SAM prompted from the selection
+  // (a box around its rendering and its most interior pixel), as in a view no click reached.
+  double part_of_selection = 0.8;
+  bool selection_prompt_growth = true;
   // A view whose mask is a part of a larger candidate of its own (the back of a chair, and the
   // whole chair) does not say whether the part or the whole is meant: what the larger
   // candidates add around the mask (for Gaussians wholly outside it) is left open in that
