@@ -417,7 +417,11 @@ Image whole_band(const models::SegmentResult& r, int c, const Mask* cut, double 
   return band;
 }
 
-void take_candidate(ViewState& vs, const models::SegmentResult& r, int c) {
+// The view's mask from candidate c of SAM's answer `result` (less the negative clicks'
+// region), which the view keeps: its logits seed the view's next round.
+void take_candidate(ViewState& vs, const std::shared_ptr<const models::SegmentResult>& result, int c) {
+  vs.sam = result;
+  const models::SegmentResult& r = *result;
   const Mask& m = r.candidates[size_t(c)];
   const Mask* cut = vs.sam_negative && !swallows(agreement(m, vs.sam_negative->mask())) ? &vs.sam_negative->mask() : nullptr;
   vs.mask.resize(m.data.size());
@@ -428,7 +432,6 @@ void take_candidate(ViewState& vs, const models::SegmentResult& r, int c) {
   }
   vs.candidate = c;
   vs.sam_score = r.candidate_scores[size_t(c)];
-  vs.low_res = r.candidate_low_res[size_t(c)];
 }
 
 // A box around the rendered selection and its most interior pixel (largest chamfer
@@ -634,7 +637,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         }
         which.push_back(k);
         prompts.push_back(std::move(clicks));
-        previous.push_back(o.reuse_previous_mask && fresh_old && !old.low_res.empty() ? &old.low_res : nullptr);
+        previous.push_back(o.reuse_previous_mask && fresh_old ? &old.sam->candidate_low_res[size_t(old.candidate)] : nullptr);
       }
       if (has_negative) {
         if (old.sam_negative && same_clicks(false)) {
@@ -683,7 +686,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       ViewState chosen = fresh[k];
       chosen.sam_negative = negatives[k];
       const models::SegmentResult& r = *results[k];
-      take_candidate(chosen, r, clicked_candidate(r, chosen));
+      take_candidate(chosen, results[k], clicked_candidate(r, chosen));
       const SegmentView& view = views_[k];
       Image surface = mask_image(chosen.mask, view.camera.width, view.camera.height);
       // Within the finest candidate that holds the click: SAM's choice at a bicycle's tube is
@@ -877,7 +880,6 @@ RoundReport Session::run_round(State& next, const State& prev) {
       ViewState& vs = fresh[k];
       if (vs.status == ViewStatus::NoClicks) continue;
       const models::SegmentResult& r = *results[k];
-      vs.sam = results[k];
       vs.sam_negative = negatives[k];
       const bool inspect = !first && o.inspection;
       if (!first) decide();
@@ -892,11 +894,11 @@ RoundReport Session::run_round(State& next, const State& prev) {
         if (several) {  // the coverage decides the candidate, then the candidate's votes
           TimeInto timed{part.coverage};
           coverage = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
-          take_candidate(vs, r,
+          take_candidate(vs, results[k],
                          respect_negatives(r, inspect ? fallback_candidate(r, coverage) : choose(r, &coverage, o.min_coverage_pixels),
                                            vs, &conflict));
         } else {  // one pass over the mask's pixels gives the selection's coverage there and the mask's votes
-          take_candidate(vs, r, clicked_candidate(r, vs, &conflict));
+          take_candidate(vs, results[k], clicked_candidate(r, vs, &conflict));
           if (vs.mask_pixels > 0 && !(conflict && negative_switched)) {
             TimeInto timed{part.mask_votes};
             mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
@@ -906,7 +908,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         }
       } else {
         bool switched = false;
-        take_candidate(vs, r, first && forced_first >= 0 ? forced_first : clicked_candidate(r, vs, nullptr, &switched));
+        take_candidate(vs, results[k], first && forced_first >= 0 ? forced_first : clicked_candidate(r, vs, nullptr, &switched));
         if (first) negative_switched = switched;
       }
       if (first) first_view = k;
@@ -983,7 +985,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
                 (o.object_prior && surroundings(w, o.min_surroundings_share)))
               continue;
             ViewState grown = vs;
-            take_candidate(grown, r, int(c));
+            take_candidate(grown, results[k], int(c));
             consider(std::move(grown));
           }
           // SAM prompted from the selection itself, as a view no click reached is: a click
@@ -994,8 +996,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
             const Image full = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
             if (prompt_from_coverage(full, prompt)) {
               ViewState grown = vs;
-              grown.sam = std::make_shared<const models::SegmentResult>(sam_->decode(views_[k].embedding, prompt));
-              take_candidate(grown, *grown.sam, grown.sam->mask_index);
+              const auto boxed = std::make_shared<const models::SegmentResult>(sam_->decode(views_[k].embedding, prompt));
+              take_candidate(grown, boxed, boxed->mask_index);
               grown.from_selection = true;
               consider(std::move(grown));
             }
@@ -1112,8 +1114,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       const size_t k = which[i];
       ViewState& vs = fresh[k];
       vs.from_selection = true;
-      vs.sam = results[k];
-      take_candidate(vs, *results[k], choose(*results[k], &coverages[i], o.min_coverage_pixels));
+      take_candidate(vs, results[k], choose(*results[k], &coverages[i], o.min_coverage_pixels));
       const Image mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
       const Agreement a = agreement(mask, coverages[i]);
       vs.overlap = a.mask_on_selection();

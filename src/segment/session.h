@@ -164,7 +164,6 @@ struct ViewState {
   std::vector<uint8_t> mask;           // SAM mask at the view's working resolution (0/1)
   int mask_pixels = 0;
   float sam_score = 0;
-  std::vector<float> low_res;          // SAM low-res logits, for the next round
   ViewStatus status = ViewStatus::NoClicks;
   double overlap = 0;                  // IIM: share of the mask covered by the selection
   double selection_inside = 0;         // IIM: share of the rendered selection inside the mask
@@ -182,7 +181,9 @@ struct ViewState {
   // that count neither way; released when the round ends (the accumulator keeps their sums).
   ViewVotes positive;
   ViewVotes neutral;
-  std::shared_ptr<const models::SegmentResult> sam;  // SAM's answer (every candidate), shared with history
+  // SAM's answer (every candidate), shared with history; the candidate's logits seed the
+  // view's next round.
+  std::shared_ptr<const models::SegmentResult> sam;
   std::shared_ptr<const models::SegmentResult> sam_negative;  // the region of the negative clicks, cut from the mask
 };
 
