@@ -48,8 +48,8 @@ const char* const kSegmentOptionsHelp =
     "  --no-grow-to-selection        drop a clicked view whose mask is a part of the selection even when\n"
     "                                its larger SAM candidate holding that part agrees with the selection\n"
     "  --no-part-growth              grow only masks that fail inspection, and only into SAM's candidates\n"
-    "                                for the click (default: also a passing mask that holds < 80 % of the\n"
-    "                                selection, and also into SAM's mask prompted from the selection)\n"
+    "                                for the click (default: also into SAM's mask prompted from the\n"
+    "                                selection, which a passing mask holding < 80 % of it tries too)\n"
 
     "  --no-object-prior             keep SAM's choice in the clicked view even when it runs past three\n"
     "                                image borders (or two, over 30 % of the image) and a candidate\n"

@@ -979,7 +979,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
             best_votes = std::move(votes);
             grew = true;
           };
-          for (size_t c = 0; c < r.candidates.size(); ++c) {
+          // A passing mask tries the selection's prompt alone (below): its larger candidates,
+          // where most views take in something the object's outline holds (the window behind
+          // the real fern), would take that in too.
+          for (size_t c = 0; c < r.candidates.size() && failing; ++c) {
             const Mask& w = r.candidates[c];
             if (int(c) == vs.candidate || r.candidate_scores[c] < o.min_granularity_score || w.data.size() != mask.data.size() ||
                 (o.object_prior && surroundings(w, o.min_surroundings_share)))

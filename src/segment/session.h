@@ -83,10 +83,12 @@ struct SessionOptions {
   // ... and only when it is close to the rendered selection (IoU).
   bool grow_to_selection = true;
   double min_grown_iou = 0.8;
-  // ... also for a mask that passes but holds less than this share of the selection (a
-  // piece of a pillar where a click lands near the frame's edge), when what is tried agrees
-  // better with the selection; and what is tried includes SAM prompted from the selection
-  // (a box around its rendering and its most interior pixel), as in a view no click reached.
+  // SAM prompted from the selection (a box around its rendering and its most interior
+  // pixel), as in a view no click reached, is tried besides the larger candidates; and a
+  // mask that passes but holds less than part_of_selection of the selection (a piece of a
+  // pillar where a click lands near the frame's edge) tries that prompt alone, taken where it
+  // agrees better with the selection than the mask. Not the larger candidates: the real fern's
+  // tighter views would grow into the window behind it that most views take in.
   double part_of_selection = 0.8;
   bool selection_prompt_growth = true;
   // A view whose mask is a part of a larger candidate of its own (the back of a chair, and the
