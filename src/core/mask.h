@@ -21,11 +21,13 @@ struct Mask {
   bool at(int x, int y) const { return data[size_t(y) * width + x] != 0; }
 };
 
-// The mask as a one-channel image of 0 and 1 (for the rasteriser's masked votes and PNGs).
-inline Image to_image(const Mask& m) {
-  Image img(m.width, m.height, 1);
-  for (size_t i = 0; i < m.data.size(); ++i) img.data[i] = m.data[i] ? 1.f : 0.f;
+// Bytes (non-zero: on) of a w x h mask as a one-channel image of 0 and 1, for the
+// rasteriser's masked votes and PNGs.
+inline Image mask_image(const std::vector<uint8_t>& bytes, int w, int h) {
+  Image img(w, h, 1);
+  for (size_t i = 0; i < bytes.size(); ++i) img.data[i] = bytes[i] ? 1.f : 0.f;
   return img;
 }
+inline Image to_image(const Mask& m) { return mask_image(m.data, m.width, m.height); }
 
 }  // namespace isegman

@@ -195,11 +195,6 @@ int negative_free_candidate(const models::SegmentResult& r, int current, const s
   return best;
 }
 
-Image mask_image(const std::vector<uint8_t>& m, int w, int h) {
-  Image img(w, h, 1);
-  for (size_t i = 0; i < m.size(); ++i) img.data[i] = m[i] ? 1.f : 0.f;
-  return img;
-}
 }  // namespace
 
 Session::Session(const GaussianScene& scene, std::vector<SegmentView> views,
