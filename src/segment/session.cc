@@ -48,6 +48,15 @@ SessionOptions paper_pipeline(SessionOptions o) {
 }
 
 namespace {
+
+// A view's pixel weight (its alpha) over the Gaussians it shows: what a visible Gaussian
+// weighs there on average.
+double mean_view_weight(const SegmentView& v) {
+  if (v.all_votes.empty()) return 0;
+  double alpha = 0;
+  for (float a : v.alpha.data) alpha += a;
+  return alpha / double(v.all_votes.size());
+}
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 // Adds the time until the end of its scope to `into`.
@@ -208,13 +217,25 @@ Session::Session(const GaussianScene& scene, std::vector<SegmentView> views,
   state_.votes = VoteAccumulator(scene.size());
   state_.selection.assign(scene.size(), false);
   state_.views.resize(views_.size());
+  for (const SegmentView& v : views_) mean_weight_.push_back(mean_view_weight(v));
 }
 
 int Session::add_view(SegmentView view) {
+  mean_weight_.push_back(mean_view_weight(view));
   views_.push_back(std::move(view));
   state_.views.emplace_back();
   for (State& s : history_) s.views.emplace_back();
   return int(views_.size() - 1);
+}
+
+double Session::min_total() const {
+  // The views' median: one free or peeled view does not move it.
+  std::vector<double> m;
+  for (double w : mean_weight_)
+    if (w > 0) m.push_back(w);
+  if (m.empty()) return options_.min_total_weight;
+  std::nth_element(m.begin(), m.begin() + m.size() / 2, m.end());
+  return std::min(options_.min_total_weight, options_.min_total_share * m[m.size() / 2]);
 }
 
 Image Session::selection_coverage(int view) const {
@@ -470,6 +491,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   RoundReport rep;
   const size_t V = views_.size();
   const SessionOptions& o = options_;
+  const double min_weight = min_total();
   // 1. Propagate every click to every view (EIP), each from `sources` (the user's clicks,
   //    or their interior anchors once the clicked views are segmented).
   auto t0 = Clock::now();
@@ -866,7 +888,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   auto inspect_and_vote = [&](int forced_first) {
     fresh = unjudged;
     acc = VoteAccumulator(scene_.size());
-    live.reset(scene_.size(), {o.tau, o.min_total_weight, o.centre_rule, {o.whole_neutral, o.whole_min_share}}, &excluded_);
+    live.reset(scene_.size(), {o.tau, min_weight, o.centre_rule, {o.whole_neutral, o.whole_min_share}}, &excluded_);
     first = true;
     negative_switched = false;
     undecided = false;
@@ -1144,7 +1166,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   if (o.coherence) {
     TimeInto timed{part.decide};
     if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
-    next.selection = eligible(coherent_selection(acc, scene_, *neighbours_, o.tau, o.min_total_weight,
+    next.selection = eligible(coherent_selection(acc, scene_, *neighbours_, o.tau, min_weight,
                                                  o.coherence_options, o.centre_rule, &live.strong(), &live.support(),
                                                  {o.whole_neutral, o.whole_min_share}));
   } else {
@@ -1153,7 +1175,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   if (o.whole_islands.enabled) {
     TimeInto timed{part.decide};
     if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
-    rep.whole_islands = drop_whole_islands(next.selection, acc, scene_, *neighbours_, o.tau, o.min_total_weight,
+    rep.whole_islands = drop_whole_islands(next.selection, acc, scene_, *neighbours_, o.tau, min_weight,
                                            o.centre_rule, o.whole_islands);
   }
   rep.selected = size_t(std::count(next.selection.begin(), next.selection.end(), true));

@@ -29,7 +29,12 @@ struct SessionOptions {
   // bicycle and lost as much elsewhere, where a shift of a few pixels changes SAM's masks (README).
   AnchorOptions interior_anchor;
   double tau = 0.8;                // select P/A > tau
-  double min_total_weight = 0.05;  // ignore Gaussians with less total blending weight
+  double min_total_weight = 0.05;  // ignore Gaussians with less total blending weight (pixels) ...
+  // ... or, in a dense scene, less than this share of the weight a visible Gaussian has in a
+  // view on average (session.cc min_total): with millions of Gaussians a view's pixels
+  // spread over so many that most weigh less than 0.05, and the first view's selection
+  // would keep too few of the object's Gaussians for the other views to agree with.
+  double min_total_share = 0.02;
   bool inspection = true;          // IIM on/off
   double min_overlap = 0.01;       // IIM: overlap pixels needed, as a share of the SAM mask
   bool reuse_previous_mask = true; // feed each view's previous low-res mask back to SAM
@@ -265,6 +270,8 @@ class Session {
   std::shared_ptr<const models::SamModel> sam_;
   SessionOptions options_;
   double scene_extent_ = 1;
+  std::vector<double> mean_weight_;  // per view: its pixels' weight over the Gaussians it shows
+  double min_total() const;
   State state_;
   std::vector<State> history_;
   std::vector<std::pair<std::pair<int, float>, int>> peeled_;  // (view, cut depth) -> peeled view
