@@ -57,6 +57,7 @@ double mean_view_weight(const SegmentView& v) {
   for (float a : v.alpha.data) alpha += a;
   return alpha / double(v.all_votes.size());
 }
+
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 // Adds the time until the end of its scope to `into`.

@@ -83,8 +83,8 @@ TEST(SegmentationEndToEnd, SelectsEachDemoObjectFromOneClick) {
   EXPECT_GE(miou, 0.95);
 }
 
-// Millions of Gaussians seen at ~1000 pixels are as dense as this scene at 128x96: a
-// Gaussian a view shows weighs well under 0.05 of a pixel there on average. A fixed floor
+// Millions of Gaussians seen at ~1000 pixels are nearly as dense as this scene at 128x96:
+// a Gaussian a view shows weighs well under 0.05 of a pixel there on average. A fixed floor
 // of 0.05 on the votes then leaves the first view's selection a sparse scatter that no
 // other view's mask agrees with; the floor that follows the views' density keeps it whole.
 TEST(SegmentationEndToEnd, ADenseSceneKeepsTheObjectsLightGaussians) {
