@@ -106,10 +106,7 @@ int run_eval_ablation(const Args& args) {
       {"- whole-mask retry", [](segment::SessionOptions& o) { o.whole_mask_retry = false; }},
       {"- empty-selection retry", [](segment::SessionOptions& o) { o.empty_selection_retry = false; }},
       {"- grow to the selection", [](segment::SessionOptions& o) { o.grow_to_selection = false; }},
-      {"- part growth", [](segment::SessionOptions& o) {
-         o.part_of_selection = o.min_selection_inside;
-         o.selection_prompt_growth = false;
-       }},
+      {"- part growth", [](segment::SessionOptions& o) { segment::disable_part_growth(o); }},
       {"- click by click", [](segment::SessionOptions& o) { o.click_by_click = false; }},
       {"- negative granularity", [](segment::SessionOptions& o) { o.negative_granularity = false; }},
   };

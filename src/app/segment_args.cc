@@ -123,10 +123,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.whole_mask_retry = !args.has("no-whole-mask-retry");
   s.session.empty_selection_retry = !args.has("no-empty-selection-retry");
   s.session.grow_to_selection = !args.has("no-grow-to-selection");
-  if (args.has("no-part-growth")) {
-    s.session.part_of_selection = s.session.min_selection_inside;
-    s.session.selection_prompt_growth = false;
-  }
+  if (args.has("no-part-growth")) segment::disable_part_growth(s.session);
   s.session.whole_neutral = !args.has("no-whole-neutral");
   s.session.object_prior = !args.has("no-object-prior");
   s.session.propagation.hidden_fallback = args.has("hidden-fallback");

@@ -36,6 +36,11 @@ std::string describe(const VotingParts& p) {
   return line;
 }
 
+void disable_part_growth(SessionOptions& o) {
+  o.part_of_selection = o.min_selection_inside;  // a passing mask is never a part to grow
+  o.selection_prompt_growth = false;
+}
+
 SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = o.click_by_click = o.negative_granularity = false;
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;

@@ -156,6 +156,9 @@ struct SessionOptions {
 // The paper's pipeline alone: every addition above switched off (hybrid propagation with
 // the paper's search of a hidden click's whole epipolar line, overlap inspection).
 SessionOptions paper_pipeline(SessionOptions base = {});
+// Part growth off (`--no-part-growth`, ablation row "- part growth"): only masks that fail
+// inspection grow, and only into SAM's candidates for the click.
+void disable_part_growth(SessionOptions& o);
 
 struct UserClick {
   int view = 0;
