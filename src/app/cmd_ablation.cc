@@ -109,6 +109,7 @@ int run_eval_ablation(const Args& args) {
       {"- part growth", [](segment::SessionOptions& o) { segment::disable_part_growth(o); }},
       {"- click by click", [](segment::SessionOptions& o) { o.click_by_click = false; }},
       {"- negative granularity", [](segment::SessionOptions& o) { o.negative_granularity = false; }},
+      {"- negative islands", [](segment::SessionOptions& o) { o.negative_islands = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

@@ -35,6 +35,9 @@ const char* const kSegmentOptionsHelp =
     "  --keep-whole-islands          keep what only the part/whole rule selects even where it does not\n"
     "                                touch the rest of the selection (default: such islands, a\n"
     "                                neighbour SAM merged in some views, are dropped)\n"
+    "  --no-negative-islands         a negative click acts only through SAM's masks (default: it also\n"
+    "                                takes out the selected island its pixel shows, where touching\n"
+    "                                Gaussians do not join that island to a positive click's)\n"
     "  --no-see-through              segment what a click sees through gaps as the render shows it\n"
     "  --no-coherence                select by vote share > tau alone (no nearest-neighbour decision)\n"
     "  --no-centre-rule              no selection of shares in (0.5, tau] by their centres lying in the masks\n"
@@ -83,7 +86,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "keep-whole-islands",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "keep-whole-islands", "no-negative-islands",
                                           "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives", "sam-all-clicks", "no-negative-granularity"};
   return f;
@@ -116,6 +119,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.background_against = !args.has("background-neutral");
   if (args.has("rendered-surface")) s.session.background_options.spread_scale = 0;
   s.session.whole_islands.enabled = !args.has("keep-whole-islands");
+  s.session.negative_islands = !args.has("no-negative-islands");
   s.session.see_through = !args.has("no-see-through");
   s.session.agreement_inspection = !args.has("overlap-inspection");
   s.session.choose_candidate = args.has("candidate-choice");

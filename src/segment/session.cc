@@ -44,7 +44,7 @@ void disable_part_growth(SessionOptions& o) {
 SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = o.click_by_click = o.negative_granularity = false;
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;
-  o.whole_islands.enabled = false;
+  o.whole_islands.enabled = o.negative_islands = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
   o.propagation.hidden_fallback = true;
@@ -1183,6 +1183,21 @@ RoundReport Session::run_round(State& next, const State& prev) {
     if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
     rep.whole_islands = drop_whole_islands(next.selection, acc, scene_, *neighbours_, o.tau, min_weight,
                                            o.centre_rule, o.whole_islands);
+  }
+  if (o.negative_islands && std::any_of(next.clicks.begin(), next.clicks.end(), [](const UserClick& c) { return c.click.label == 0; })) {
+    TimeInto timed{part.decide};
+    // Every click's Gaussians first, from the selection before any island leaves it.
+    std::vector<uint32_t> positive_seeds;
+    std::vector<std::vector<uint32_t>> negative_seeds;
+    for (const UserClick& c : next.clicks) {
+      std::vector<uint32_t> shown = selected_at_pixel(views_[size_t(c.view)].frame, next.selection,
+                                                      int(std::floor(c.click.x)), int(std::floor(c.click.y)), o.threads);
+      if (c.click.label == 1) positive_seeds.insert(positive_seeds.end(), shown.begin(), shown.end());
+      else negative_seeds.push_back(std::move(shown));
+    }
+    if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
+    rep.negative_islands =
+        cut_negative_islands(next.selection, scene_, *neighbours_, positive_seeds, negative_seeds, o.whole_islands).removed;
   }
   rep.selected = size_t(std::count(next.selection.begin(), next.selection.end(), true));
   rep.views_segmented = segmented;

@@ -17,6 +17,7 @@
 #include "segment/see_through.h"
 #include "segment/views.h"
 #include "segment/votes.h"
+#include "segment/negative_islands.h"
 #include "segment/whole_islands.h"
 
 namespace isegman::segment {
@@ -108,6 +109,10 @@ struct SessionOptions {
   // ... and what it alone selects must touch, through selected Gaussians, what the votes
   // select on their own (whole_islands.h): a neighbour SAM merged in some views stands apart.
   IslandOptions whole_islands{true};
+  // A negative click on the selection takes out the island of selected Gaussians it shows,
+  // unless touching Gaussians join it to what a positive click shows (negative_islands.h):
+  // for what SAM cannot segment apart from the object.
+  bool negative_islands = true;
   // Views no click reached (point out of frame or hidden) are prompted from the selection
   // rendered in them (a box and an interior point, as SA3D does), for this many rounds.
   int selection_prompt_rounds = 2;
@@ -220,6 +225,7 @@ struct RoundReport {
   size_t selected = 0;
   bool larger_granularity = false;  // the first view voted with a larger candidate than SAM's choice
   size_t whole_islands = 0;         // Gaussians the whole rule alone selected, apart from the rest (dropped)
+  size_t negative_islands = 0;      // Gaussians negative clicks took out as islands apart from the positive ones
   bool duplicate = false;  // the click repeated an earlier one: nothing changed
 };
 
