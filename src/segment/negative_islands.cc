@@ -61,8 +61,11 @@ NegativeCut cut_negative_islands(std::vector<bool>& selection, const GaussianSce
   for (uint32_t g : positive_seeds) positive[g] = 1;
   std::vector<uint8_t> seen(selection.size(), 0);
   for (const std::vector<uint32_t>& seeds : negative_seeds) {
-    // Flood the island from the click's Gaussians, over selected Gaussians only.
+    // Flood the island from the click's Gaussians, over selected Gaussians only, breadth
+    // first: a positive click's Gaussians joined to them are found within the distance
+    // between the two, not after most of the object (a depth-first flood).
     std::vector<uint32_t> island, frontier;
+    size_t head = 0;
     bool joined = false;
     std::fill(seen.begin(), seen.end(), 0);
     for (uint32_t g : seeds)
@@ -71,9 +74,8 @@ NegativeCut cut_negative_islands(std::vector<bool>& selection, const GaussianSce
         frontier.push_back(g);
       }
     if (frontier.empty()) continue;
-    while (!frontier.empty() && !joined) {
-      const uint32_t g = frontier.back();
-      frontier.pop_back();
+    while (head < frontier.size() && !joined) {
+      const uint32_t g = frontier[head++];
       island.push_back(g);
       if (positive[g]) {
         joined = true;
