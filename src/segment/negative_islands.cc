@@ -48,15 +48,9 @@ NegativeCut cut_negative_islands(std::vector<bool>& selection, const GaussianSce
                                  const std::vector<std::vector<uint32_t>>& negative_seeds, const IslandOptions& link) {
   NegativeCut out;
   if (negative_seeds.empty()) return out;
-  // The largest scale a link may need: a high percentile of the selection's (as
-  // drop_whole_islands), so one huge Gaussian does not widen every search.
-  std::vector<float> scales;
-  for (size_t j = 0; j < selection.size(); ++j)
-    if (selection[j]) scales.push_back(scene.largest_scale(j));
-  if (scales.empty()) return out;
-  const size_t q = std::min(scales.size() - 1, size_t(0.95 * double(scales.size())));
-  std::nth_element(scales.begin(), scales.begin() + std::ptrdiff_t(q), scales.end());
-  const double reach = scales[q];
+  // An island's Gaussians leave the selection only after its flood ends, so the touch rule
+  // sees the selection as it was for the whole flood.
+  const TouchingGaussians touching(scene, index, selection, link.link_sigmas);
   std::vector<uint8_t> positive(selection.size(), 0);
   for (uint32_t g : positive_seeds) positive[g] = 1;
   std::vector<uint8_t> seen(selection.size(), 0);
@@ -81,16 +75,11 @@ NegativeCut cut_negative_islands(std::vector<bool>& selection, const GaussianSce
         joined = true;
         break;
       }
-      const double sg = scene.largest_scale(g);
-      const Vec3 p = scene.position(g);
-      for (uint32_t j : index.within(p, link.link_sigmas * (sg + reach))) {
-        if (seen[j] || !selection[j]) continue;
-        const double reach_j = link.link_sigmas * (sg + scene.largest_scale(j));
-        const Vec3 d = scene.position(j) - p;
-        if (d.x * d.x + d.y * d.y + d.z * d.z > reach_j * reach_j) continue;
+      touching.for_each(g, [&](uint32_t j) {
+        if (seen[j]) return;
         seen[j] = 1;
         frontier.push_back(j);
-      }
+      });
     }
     if (joined) {
       ++out.joined;

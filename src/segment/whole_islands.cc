@@ -15,26 +15,35 @@ uint32_t root(std::vector<uint32_t>& parent, uint32_t a) {
 
 }  // namespace
 
+TouchingGaussians::TouchingGaussians(const GaussianScene& scene, const CentreIndex& index,
+                                     const std::vector<bool>& selection, double link_sigmas)
+    : scene_(scene), index_(index), selection_(selection), link_(link_sigmas) {
+  std::vector<float> scales;
+  for (size_t j = 0; j < selection.size(); ++j)
+    if (selection[j]) scales.push_back(scene.largest_scale(j));
+  if (scales.empty()) return;
+  const size_t q = std::min(scales.size() - 1, size_t(0.95 * double(scales.size())));
+  std::nth_element(scales.begin(), scales.begin() + std::ptrdiff_t(q), scales.end());
+  reach_ = scales[q];
+}
+
 size_t drop_whole_islands(std::vector<bool>& selection, const VoteAccumulator& votes, const GaussianScene& scene,
                           const CentreIndex& index, double tau, double min_total, const CentreRule& centre,
                           const IslandOptions& o) {
   if (!o.enabled) return 0;
   const int64_t min_fixed = VoteAccumulator::min_fixed(min_total);
-  // The Gaussians that depend on the whole rule (or on their neighbours) and the largest
-  // scale a link may need (a high percentile, so one huge Gaussian does not widen every search).
+  // The Gaussians that depend on the whole rule (or on their neighbours).
   std::vector<uint32_t> dependent;
-  std::vector<float> scales;
+  size_t selected = 0;
   for (size_t j = 0; j < selection.size(); ++j) {
     if (!selection[j]) continue;
-    scales.push_back(scene.largest_scale(j));
+    ++selected;
     if (!votes.selects(j, tau, min_fixed, centre)) dependent.push_back(uint32_t(j));
   }
   // Nothing depends on the rule, or nothing is selected on its own votes (no part to grow
   // from): nothing is dropped.
-  if (dependent.empty() || dependent.size() == scales.size()) return 0;
-  const size_t q = std::min(scales.size() - 1, size_t(0.95 * double(scales.size())));
-  std::nth_element(scales.begin(), scales.begin() + std::ptrdiff_t(q), scales.end());
-  const double reach = scales[q];
+  if (dependent.empty() || dependent.size() == selected) return 0;
+  const TouchingGaussians touching(scene, index, selection, o.link_sigmas);
   // Union-find over the dependent Gaussians (positions in `dependent`); a set is anchored
   // when one of its members touches a Gaussian selected on its own votes.
   std::vector<uint32_t> parent(dependent.size());
@@ -44,15 +53,8 @@ size_t drop_whole_islands(std::vector<bool>& selection, const VoteAccumulator& v
     const auto it = std::lower_bound(dependent.begin(), dependent.end(), j);
     return it != dependent.end() && *it == j ? long(it - dependent.begin()) : -1;
   };
-  for (size_t a = 0; a < dependent.size(); ++a) {
-    const uint32_t g = dependent[a];
-    const double sg = scene.largest_scale(g);
-    const Vec3 p = scene.position(g);
-    for (uint32_t j : index.within(p, o.link_sigmas * (sg + reach))) {
-      if (j == g || !selection[j]) continue;
-      const double link = o.link_sigmas * (sg + scene.largest_scale(j));
-      const Vec3 d = scene.position(j) - p;
-      if (d.x * d.x + d.y * d.y + d.z * d.z > link * link) continue;
+  for (size_t a = 0; a < dependent.size(); ++a)
+    touching.for_each(dependent[a], [&](uint32_t j) {
       const long b = slot(j);
       if (b < 0) {
         anchored[a] = 1;
@@ -60,8 +62,7 @@ size_t drop_whole_islands(std::vector<bool>& selection, const VoteAccumulator& v
         const uint32_t ra = root(parent, uint32_t(a)), rb = root(parent, uint32_t(b));
         if (ra != rb) parent[ra] = rb;  // anchors reach their set's root after the loop
       }
-    }
-  }
+    });
   size_t dropped = 0;
   for (size_t a = 0; a < dependent.size(); ++a) anchored[root(parent, uint32_t(a))] |= anchored[a];
   for (size_t a = 0; a < dependent.size(); ++a)

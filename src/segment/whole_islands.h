@@ -24,6 +24,35 @@ struct IslandOptions {
   double link_sigmas = 1.0;
 };
 
+// The touch rule of the island steps (here and negative_islands.h): two selected Gaussians
+// touch when their centres lie within link_sigmas x (the largest scale of one + that of the
+// other). A search reaches as far as a high percentile of the selection's scales allows, so
+// one huge Gaussian does not widen every search.
+class TouchingGaussians {
+ public:
+  // `index` is built over `scene`; both and `selection` must outlive this.
+  TouchingGaussians(const GaussianScene& scene, const CentreIndex& index, const std::vector<bool>& selection,
+                    double link_sigmas);
+  // f(j) for every selected Gaussian j != g that touches g.
+  template <class F>
+  void for_each(uint32_t g, F&& f) const {
+    const double sg = scene_.largest_scale(g);
+    const Vec3 p = scene_.position(g);
+    for (uint32_t j : index_.within(p, link_ * (sg + reach_))) {
+      if (j == g || !selection_[j]) continue;
+      const double link = link_ * (sg + scene_.largest_scale(j));
+      const Vec3 d = scene_.position(j) - p;
+      if (d.x * d.x + d.y * d.y + d.z * d.z <= link * link) f(j);
+    }
+  }
+
+ private:
+  const GaussianScene& scene_;
+  const CentreIndex& index_;
+  const std::vector<bool>& selection_;
+  double link_, reach_ = 0;
+};
+
 // Drops from `selection` the Gaussians that neither their own share (P/A > tau, with
 // enough weight) nor the centre rule selects, unless a chain of selected Gaussians, each
 // touching the next, joins them to one those select. `index` is built over `scene`.
