@@ -234,6 +234,11 @@ int Session::add_view(SegmentView view) {
   return int(views_.size() - 1);
 }
 
+const CentreIndex& Session::neighbours() {
+  if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
+  return *neighbours_;
+}
+
 double Session::min_total() const {
   // The views' median: one free or peeled view does not move it.
   std::vector<double> m;
@@ -1171,8 +1176,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   decide();
   if (o.coherence) {
     TimeInto timed{part.decide};
-    if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
-    next.selection = eligible(coherent_selection(acc, scene_, *neighbours_, o.tau, min_weight,
+    next.selection = eligible(coherent_selection(acc, scene_, neighbours(), o.tau, min_weight,
                                                  o.coherence_options, o.centre_rule, &live.strong(), &live.support(),
                                                  {o.whole_neutral, o.whole_min_share}));
   } else {
@@ -1180,8 +1184,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   }
   if (o.whole_islands.enabled) {
     TimeInto timed{part.decide};
-    if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
-    rep.whole_islands = drop_whole_islands(next.selection, acc, scene_, *neighbours_, o.tau, min_weight,
+    rep.whole_islands = drop_whole_islands(next.selection, acc, scene_, neighbours(), o.tau, min_weight,
                                            o.centre_rule, o.whole_islands);
   }
   if (o.negative_islands && std::any_of(next.clicks.begin(), next.clicks.end(), [](const UserClick& c) { return c.click.label == 0; })) {
@@ -1195,9 +1198,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
       if (c.click.label == 1) positive_seeds.insert(positive_seeds.end(), shown.begin(), shown.end());
       else negative_seeds.push_back(std::move(shown));
     }
-    if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
     rep.negative_islands =
-        cut_negative_islands(next.selection, scene_, *neighbours_, positive_seeds, negative_seeds, o.whole_islands).removed;
+        cut_negative_islands(next.selection, scene_, neighbours(), positive_seeds, negative_seeds, o.whole_islands).removed;
   }
   rep.selected = size_t(std::count(next.selection.begin(), next.selection.end(), true));
   rep.views_segmented = segmented;

@@ -285,6 +285,7 @@ class Session {
   std::vector<State> history_;
   std::vector<std::pair<std::pair<int, float>, int>> peeled_;  // (view, cut depth) -> peeled view
   std::unique_ptr<CentreIndex> neighbours_;  // built at the first decision that needs it
+  const CentreIndex& neighbours();
   std::vector<bool> excluded_;
   LiveSelection live_;  // the selection while a round votes; its buffers serve every round
 };
