@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "core/quat_rotation.h"
+
 namespace isegman {
 
 // A point in an image, continuous pixel coordinates (core/click.h).
@@ -85,19 +87,14 @@ struct Quat {
     double n = norm();
     return n > 0 ? Quat{w / n, x / n, y / n, z / n} : Quat{};
   }
-  // Rotation matrix of the normalised quaternion (the 3DGS build_rotation formula).
+  // Rotation matrix of the normalised quaternion (core/quat_rotation.h).
   Mat3 to_matrix() const {
-    Quat q = normalized();
+    const Quat q = normalized();
+    double R[9];
+    unit_quat_to_rotmat(q.w, q.x, q.y, q.z, R);
     Mat3 r;
-    r.m[0][0] = 1 - 2 * (q.y * q.y + q.z * q.z);
-    r.m[0][1] = 2 * (q.x * q.y - q.w * q.z);
-    r.m[0][2] = 2 * (q.x * q.z + q.w * q.y);
-    r.m[1][0] = 2 * (q.x * q.y + q.w * q.z);
-    r.m[1][1] = 1 - 2 * (q.x * q.x + q.z * q.z);
-    r.m[1][2] = 2 * (q.y * q.z - q.w * q.x);
-    r.m[2][0] = 2 * (q.x * q.z - q.w * q.y);
-    r.m[2][1] = 2 * (q.y * q.z + q.w * q.x);
-    r.m[2][2] = 1 - 2 * (q.x * q.x + q.y * q.y);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) r.m[i][j] = R[3 * i + j];
     return r;
   }
   static Quat from_matrix(const Mat3& r);

@@ -7,30 +7,6 @@
 
 namespace isegman::edit {
 
-void sh_basis_d(int degree, double x, double y, double z, double* b) {
-  b[0] = kShC0;
-  if (degree < 1) return;
-  const double c1 = kShC1;
-  b[1] = -c1 * y;
-  b[2] = c1 * z;
-  b[3] = -c1 * x;
-  if (degree < 2) return;
-  const double xx = x * x, yy = y * y, zz = z * z, xy = x * y, yz = y * z, xz = x * z;
-  b[4] = double(kShC2[0]) * xy;
-  b[5] = double(kShC2[1]) * yz;
-  b[6] = double(kShC2[2]) * (2 * zz - xx - yy);
-  b[7] = double(kShC2[3]) * xz;
-  b[8] = double(kShC2[4]) * (xx - yy);
-  if (degree < 3) return;
-  b[9] = double(kShC3[0]) * y * (3 * xx - yy);
-  b[10] = double(kShC3[1]) * xy * z;
-  b[11] = double(kShC3[2]) * y * (4 * zz - xx - yy);
-  b[12] = double(kShC3[3]) * z * (2 * zz - 3 * xx - 3 * yy);
-  b[13] = double(kShC3[4]) * x * (4 * zz - xx - yy);
-  b[14] = double(kShC3[5]) * z * (xx - yy);
-  b[15] = double(kShC3[6]) * x * (xx - 3 * yy);
-}
-
 namespace {
 
 constexpr int kSamples = 26;  // > 2l+1 for every band; spread over the sphere
@@ -84,7 +60,7 @@ struct Fit {
     for (int j = 0; j < kSamples; ++j) {
       double d[3];
       sample_direction(j, d);
-      sh_basis_d(3, d[0], d[1], d[2], basis[j]);
+      sh_basis(3, d[0], d[1], d[2], basis[j]);
     }
     for (int l = 1; l <= 3; ++l) {
       const int n = 2 * l + 1, off = l * l;
@@ -119,7 +95,7 @@ ShRotation::ShRotation(const Mat3& R) {
     double d[3];
     sample_direction(j, d);
     Vec3 v = Rt * Vec3{d[0], d[1], d[2]};
-    sh_basis_d(3, v.x, v.y, v.z, rotated[j]);
+    sh_basis(3, v.x, v.y, v.z, rotated[j]);
   }
   m_[0][0] = 1;
   for (int l = 1; l <= 3; ++l) {

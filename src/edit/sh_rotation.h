@@ -26,7 +26,4 @@ class ShRotation {
   double m_[4][49] = {};
 };
 
-// Real SH basis (core/sh.h convention) in double precision, (degree+1)^2 values.
-void sh_basis_d(int degree, double x, double y, double z, double* out);
-
 }  // namespace isegman::edit

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/camera.h"
+#include "core/quat_rotation.h"
 
 namespace isegman {
 
@@ -47,79 +48,107 @@ struct BasicProjectionCamera {
 };
 using ProjectionCamera = BasicProjectionCamera<float>;
 
-// 3D covariance (upper triangle: xx xy xz yy yz zz) from log-scales and a quaternion.
-inline void covariance_3d(const float* log_scale, const float* quat_wxyz, float cov[6]) {
-  float w = quat_wxyz[0], x = quat_wxyz[1], y = quat_wxyz[2], z = quat_wxyz[3];
-  const float n = std::sqrt(w * w + x * x + y * y + z * z);
-  w /= n; x /= n; y /= n; z /= n;
-  const float Rm[9] = {1.f - 2.f * (y * y + z * z), 2.f * (x * y - w * z), 2.f * (x * z + w * y),
-                       2.f * (x * y + w * z), 1.f - 2.f * (x * x + z * z), 2.f * (y * z - w * x),
-                       2.f * (x * z - w * y), 2.f * (y * z + w * x), 1.f - 2.f * (x * x + y * y)};
-  const float s[3] = {std::exp(log_scale[0]), std::exp(log_scale[1]), std::exp(log_scale[2])};
-  float M[9];  // M = R S
+// The 3D covariance Sigma = R S S^T R^T of a Gaussian from its log-scales and quaternion,
+// with the factors the backward pass differentiates through.
+template <typename Real>
+struct BasicCovariance3d {
+  Real rot[9];          // R (row-major) of the normalised quaternion
+  Real qn[4], qnorm;    // that quaternion and the stored one's norm
+  Real s[3];            // scales
+  Real M[9];            // R S
+  Real cov[6];          // upper triangle: xx xy xz yy yz zz
+};
+
+template <typename Real>
+inline void covariance_3d(const Real* log_scale, const Real* quat_wxyz, BasicCovariance3d<Real>& c) {
+  c.qnorm = quat_to_rotmat(quat_wxyz, c.rot, c.qn);
+  for (int k = 0; k < 3; ++k) c.s[k] = std::exp(log_scale[k]);
+  Real* M = c.M;
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) M[3 * r + c] = Rm[3 * r + c] * s[c];
+    for (int k = 0; k < 3; ++k) M[3 * r + k] = c.rot[3 * r + k] * c.s[k];
   // Sigma = M M^T
-  cov[0] = M[0] * M[0] + M[1] * M[1] + M[2] * M[2];
-  cov[1] = M[0] * M[3] + M[1] * M[4] + M[2] * M[5];
-  cov[2] = M[0] * M[6] + M[1] * M[7] + M[2] * M[8];
-  cov[3] = M[3] * M[3] + M[4] * M[4] + M[5] * M[5];
-  cov[4] = M[3] * M[6] + M[4] * M[7] + M[5] * M[8];
-  cov[5] = M[6] * M[6] + M[7] * M[7] + M[8] * M[8];
+  c.cov[0] = M[0] * M[0] + M[1] * M[1] + M[2] * M[2];
+  c.cov[1] = M[0] * M[3] + M[1] * M[4] + M[2] * M[5];
+  c.cov[2] = M[0] * M[6] + M[1] * M[7] + M[2] * M[8];
+  c.cov[3] = M[3] * M[3] + M[4] * M[4] + M[5] * M[5];
+  c.cov[4] = M[3] * M[6] + M[4] * M[7] + M[5] * M[8];
+  c.cov[5] = M[6] * M[6] + M[7] * M[7] + M[8] * M[8];
 }
 
-struct Footprint {
-  float mean_x, mean_y;  // index coordinates
-  float depth;           // camera-space z
-  float cov_a, cov_b, cov_c;        // 2D covariance incl. the 0.3 blur
-  float conic_a, conic_b, conic_c;  // its inverse
-  int radius;                        // 3-sigma radius in pixels (ceil)
+// The covariance alone, for the forward passes.
+inline void covariance_3d(const float* log_scale, const float* quat_wxyz, float cov[6]) {
+  BasicCovariance3d<float> c;
+  covariance_3d(log_scale, quat_wxyz, c);
+  for (int k = 0; k < 6; ++k) cov[k] = c.cov[k];
+}
+
+template <typename Real>
+struct BasicFootprint {
+  Real mean_x, mean_y;  // index coordinates
+  Real depth;           // camera-space z
+  Real cov_a, cov_b, cov_c;        // 2D covariance incl. the blur
+  Real conic_a, conic_b, conic_c;  // its inverse
+  int radius;                      // 3-sigma radius in pixels (ceil)
+  // For the backward pass: the camera-space centre, its x/z and y/z after the clamp (and
+  // whether the clamp acted), and T = J W.
+  Real tx0, ty0, txtz, tytz;
+  bool clamp_x, clamp_y;
+  Real T0[3], T1[3];
 };
+using Footprint = BasicFootprint<float>;
 
 // Projects Gaussian centre `p` with 3D covariance `cov3`; false when culled (near plane,
 // degenerate covariance).
-inline bool project_footprint(const ProjectionCamera& cam, const float* p, const float* cov3, float near_plane,
-                              float blur, Footprint& f) {
-  const float* R = cam.R;
-  const float tx0 = R[0] * p[0] + R[1] * p[1] + R[2] * p[2] + cam.t[0];
-  const float ty0 = R[3] * p[0] + R[4] * p[1] + R[5] * p[2] + cam.t[1];
-  const float tz = R[6] * p[0] + R[7] * p[1] + R[8] * p[2] + cam.t[2];
+template <typename Real>
+inline bool project_footprint(const BasicProjectionCamera<Real>& cam, const Real* p, const Real* cov3, Real near_plane,
+                              Real blur, BasicFootprint<Real>& f) {
+  const Real* R = cam.R;
+  f.tx0 = R[0] * p[0] + R[1] * p[1] + R[2] * p[2] + cam.t[0];
+  f.ty0 = R[3] * p[0] + R[4] * p[1] + R[5] * p[2] + cam.t[1];
+  const Real tz = R[6] * p[0] + R[7] * p[1] + R[8] * p[2] + cam.t[2];
   if (tz <= near_plane) return false;
-  const float inv_z = 1.f / tz;
+  f.depth = tz;
+  const Real inv_z = Real(1) / tz;
   // Jacobian of the perspective map at the (clamped) point.
-  const float txtz = std::fmin(std::fmax(tx0 * inv_z, cam.lim_x_lo), cam.lim_x_hi);
-  const float tytz = std::fmin(std::fmax(ty0 * inv_z, cam.lim_y_lo), cam.lim_y_hi);
-  const float tx = txtz * tz, ty = tytz * tz;
-  const float j00 = cam.fx * inv_z, j02 = -cam.fx * tx * inv_z * inv_z;
-  const float j11 = cam.fy * inv_z, j12 = -cam.fy * ty * inv_z * inv_z;
+  const Real ux = f.tx0 * inv_z, uy = f.ty0 * inv_z;
+  f.txtz = std::fmin(std::fmax(ux, cam.lim_x_lo), cam.lim_x_hi);
+  f.tytz = std::fmin(std::fmax(uy, cam.lim_y_lo), cam.lim_y_hi);
+  f.clamp_x = f.txtz != ux;
+  f.clamp_y = f.tytz != uy;
+  const Real tx = f.txtz * tz, ty = f.tytz * tz;
+  const Real j00 = cam.fx * inv_z, j02 = -cam.fx * tx * inv_z * inv_z;
+  const Real j11 = cam.fy * inv_z, j12 = -cam.fy * ty * inv_z * inv_z;
   // T = J W (2x3)
-  const float T0[3] = {j00 * R[0] + j02 * R[6], j00 * R[1] + j02 * R[7], j00 * R[2] + j02 * R[8]};
-  const float T1[3] = {j11 * R[3] + j12 * R[6], j11 * R[4] + j12 * R[7], j11 * R[5] + j12 * R[8]};
-  const float S[9] = {cov3[0], cov3[1], cov3[2], cov3[1], cov3[3], cov3[4], cov3[2], cov3[4], cov3[5]};
-  float ST0[3], ST1[3];  // Sigma T^T columns
+  for (int k = 0; k < 3; ++k) {
+    f.T0[k] = j00 * R[k] + j02 * R[6 + k];
+    f.T1[k] = j11 * R[3 + k] + j12 * R[6 + k];
+  }
+  const Real* T0 = f.T0;
+  const Real* T1 = f.T1;
+  const Real S[9] = {cov3[0], cov3[1], cov3[2], cov3[1], cov3[3], cov3[4], cov3[2], cov3[4], cov3[5]};
+  Real ST0[3], ST1[3];  // Sigma T^T columns
   for (int r = 0; r < 3; ++r) {
     ST0[r] = S[3 * r] * T0[0] + S[3 * r + 1] * T0[1] + S[3 * r + 2] * T0[2];
     ST1[r] = S[3 * r] * T1[0] + S[3 * r + 1] * T1[1] + S[3 * r + 2] * T1[2];
   }
-  const float a = T0[0] * ST0[0] + T0[1] * ST0[1] + T0[2] * ST0[2] + blur;
-  const float b = T0[0] * ST1[0] + T0[1] * ST1[1] + T0[2] * ST1[2];
-  const float c = T1[0] * ST1[0] + T1[1] * ST1[1] + T1[2] * ST1[2] + blur;
-  const float det = a * c - b * b;
-  if (!(det > 0.f)) return false;
-  const float inv_det = 1.f / det;
+  const Real a = T0[0] * ST0[0] + T0[1] * ST0[1] + T0[2] * ST0[2] + blur;
+  const Real b = T0[0] * ST1[0] + T0[1] * ST1[1] + T0[2] * ST1[2];
+  const Real c = T1[0] * ST1[0] + T1[1] * ST1[1] + T1[2] * ST1[2] + blur;
+  const Real det = a * c - b * b;
+  if (!(det > Real(0))) return false;
+  const Real inv_det = Real(1) / det;
   f.conic_a = c * inv_det;
   f.conic_b = -b * inv_det;
   f.conic_c = a * inv_det;
   f.cov_a = a;
   f.cov_b = b;
   f.cov_c = c;
-  const float mid = 0.5f * (a + c);
-  const float disc = std::sqrt(std::fmax(0.1f, mid * mid - det));
-  const float lambda1 = mid + disc, lambda2 = mid - disc;
-  f.radius = int(std::ceil(3.f * std::sqrt(std::fmax(lambda1, lambda2))));
-  f.mean_x = cam.fx * tx0 * inv_z + cam.cx;
-  f.mean_y = cam.fy * ty0 * inv_z + cam.cy;
-  f.depth = tz;
+  const Real mid = Real(0.5) * (a + c);
+  const Real disc = std::sqrt(std::fmax(Real(0.1), mid * mid - det));
+  const Real lambda1 = mid + disc, lambda2 = mid - disc;
+  f.radius = int(std::ceil(Real(3) * std::sqrt(std::fmax(lambda1, lambda2))));
+  f.mean_x = cam.fx * f.tx0 * inv_z + cam.cx;
+  f.mean_y = cam.fy * f.ty0 * inv_z + cam.cy;
   return true;
 }
 

@@ -22,176 +22,38 @@ template <typename Real>
 using DiffCamera = BasicProjectionCamera<Real>;
 
 // ---------------------------------------------------------------------------------------
-// Per-Gaussian maths, forward and backward side by side (gsplat style).
-
-// Rotation matrix (row-major) of the normalised quaternion.
-template <typename Real>
-void quat_to_rotation(const Real* q, Real Rm[9], Real qn[4], Real& norm) {
-  Real w = q[0], x = q[1], y = q[2], z = q[3];
-  norm = std::sqrt(w * w + x * x + y * y + z * z);
-  w /= norm; x /= norm; y /= norm; z /= norm;
-  qn[0] = w; qn[1] = x; qn[2] = y; qn[3] = z;
-  const Real one = 1, two = 2;
-  Rm[0] = one - two * (y * y + z * z); Rm[1] = two * (x * y - w * z); Rm[2] = two * (x * z + w * y);
-  Rm[3] = two * (x * y + w * z); Rm[4] = one - two * (x * x + z * z); Rm[5] = two * (y * z - w * x);
-  Rm[6] = two * (x * z - w * y); Rm[7] = two * (y * z + w * x); Rm[8] = one - two * (x * x + y * y);
-}
-
-// dL/dq (unnormalised) from dL/dR.
-template <typename Real>
-void quat_to_rotation_backward(const Real qn[4], Real norm, const Real G[9], Real dq[4]) {
-  const Real w = qn[0], x = qn[1], y = qn[2], z = qn[3];
-  Real gw = 2 * (-z * G[1] + y * G[2] + z * G[3] - x * G[5] - y * G[6] + x * G[7]);
-  Real gx = 2 * (y * G[1] + z * G[2] + y * G[3] - 2 * x * G[4] - w * G[5] + z * G[6] + w * G[7] - 2 * x * G[8]);
-  Real gy = 2 * (-2 * y * G[0] + x * G[1] + w * G[2] + x * G[3] + z * G[5] - w * G[6] + z * G[7] - 2 * y * G[8]);
-  Real gz = 2 * (-2 * z * G[0] - w * G[1] + x * G[2] + w * G[3] - 2 * z * G[4] + y * G[5] + x * G[6] + y * G[7]);
-  // Through the normalisation qn = q / |q|.
-  const Real d = w * gw + x * gx + y * gy + z * gz;
-  dq[0] = (gw - w * d) / norm;
-  dq[1] = (gx - x * d) / norm;
-  dq[2] = (gy - y * d) / norm;
-  dq[3] = (gz - z * d) / norm;
-}
-
-// SH basis derivatives d b_k / d(x, y, z) for k < (degree+1)^2 (b as in core/sh.h).
-template <typename Real>
-void sh_basis_grad(int degree, Real x, Real y, Real z, Real dx[16], Real dy[16], Real dz[16]) {
-  for (int k = 0; k < 16; ++k) dx[k] = dy[k] = dz[k] = 0;
-  if (degree < 1) return;
-  const Real c1 = Real(kShC1);
-  dy[1] = -c1;
-  dz[2] = c1;
-  dx[3] = -c1;
-  if (degree < 2) return;
-  const Real xx = x * x, yy = y * y, zz = z * z;
-  const Real a0 = Real(kShC2[0]), a1 = Real(kShC2[1]), a2 = Real(kShC2[2]), a3 = Real(kShC2[3]), a4 = Real(kShC2[4]);
-  dx[4] = a0 * y; dy[4] = a0 * x;
-  dy[5] = a1 * z; dz[5] = a1 * y;
-  dx[6] = -2 * a2 * x; dy[6] = -2 * a2 * y; dz[6] = 4 * a2 * z;
-  dx[7] = a3 * z; dz[7] = a3 * x;
-  dx[8] = 2 * a4 * x; dy[8] = -2 * a4 * y;
-  if (degree < 3) return;
-  const Real b0 = Real(kShC3[0]), b1 = Real(kShC3[1]), b2 = Real(kShC3[2]), b3 = Real(kShC3[3]),
-             b4 = Real(kShC3[4]), b5 = Real(kShC3[5]), b6 = Real(kShC3[6]);
-  dx[9] = b0 * 6 * x * y; dy[9] = b0 * (3 * xx - 3 * yy);
-  dx[10] = b1 * y * z; dy[10] = b1 * x * z; dz[10] = b1 * x * y;
-  dx[11] = b2 * (-2 * x * y); dy[11] = b2 * (4 * zz - xx - 3 * yy); dz[11] = b2 * 8 * y * z;
-  dx[12] = b3 * (-6 * x * z); dy[12] = b3 * (-6 * y * z); dz[12] = b3 * (6 * zz - 3 * xx - 3 * yy);
-  dx[13] = b4 * (4 * zz - 3 * xx - yy); dy[13] = b4 * (-2 * x * y); dz[13] = b4 * 8 * x * z;
-  dx[14] = b5 * 2 * x * z; dy[14] = b5 * (-2 * y * z); dz[14] = b5 * (xx - yy);
-  dx[15] = b6 * (3 * xx - 3 * yy); dy[15] = b6 * (-6 * x * y);
-}
-
-// SH basis in the scalar type (core/sh.h's sh_basis, same expressions).
-template <typename Real>
-void sh_basis_t(int degree, Real x, Real y, Real z, Real* b) {
-  b[0] = Real(kShC0);
-  if (degree < 1) return;
-  b[1] = -Real(kShC1) * y;
-  b[2] = Real(kShC1) * z;
-  b[3] = -Real(kShC1) * x;
-  if (degree < 2) return;
-  const Real xx = x * x, yy = y * y, zz = z * z, xy = x * y, yz = y * z, xz = x * z;
-  b[4] = Real(kShC2[0]) * xy;
-  b[5] = Real(kShC2[1]) * yz;
-  b[6] = Real(kShC2[2]) * (Real(2) * zz - xx - yy);
-  b[7] = Real(kShC2[3]) * xz;
-  b[8] = Real(kShC2[4]) * (xx - yy);
-  if (degree < 3) return;
-  b[9] = Real(kShC3[0]) * y * (Real(3) * xx - yy);
-  b[10] = Real(kShC3[1]) * xy * z;
-  b[11] = Real(kShC3[2]) * y * (Real(4) * zz - xx - yy);
-  b[12] = Real(kShC3[3]) * z * (Real(2) * zz - Real(3) * xx - Real(3) * yy);
-  b[13] = Real(kShC3[4]) * x * (Real(4) * zz - xx - yy);
-  b[14] = Real(kShC3[5]) * z * (xx - yy);
-  b[15] = Real(kShC3[6]) * x * (xx - Real(3) * yy);
-}
+// Per-Gaussian maths. The forward pieces are the rasteriser's own (projection.h, and
+// core/quat_rotation.h and core/sh.h with their derivatives beside them); what chains
+// their gradients back is here.
 
 // Everything the projection computes for one Gaussian (kept for the backward pass).
 template <typename Real>
 struct Projected {
-  Real Rm[9], qn[4], qnorm, s[3], M[9], cov3[6];
-  Real tx0, ty0, tz, txtz, tytz, tx, ty;
-  bool clamp_x, clamp_y;
-  Real T0[3], T1[3];
-  Real a, b, c;  // 2D covariance incl. blur
-  Real conic[3];
-  Real mean_x, mean_y;
-  int radius;
+  BasicCovariance3d<Real> cov;
+  BasicFootprint<Real> fp;
   Real dir[3], dir_norm;  // unit view direction and the distance it was divided by
   Real raw_rgb[3];        // before the clamp at 0
   Real rgb[3];
   Real opacity;
 };
 
-// projection.h's covariance_3d + project_footprint and the rasteriser's opacity and SH,
-// in the scalar type and in the same order of operations. False when culled.
+// The rasteriser's projection (projection.h), opacity and SH in the scalar type. False
+// when culled.
 template <typename Real>
 bool project_gaussian(const GaussianParams<Real>& P, size_t i, const DiffCamera<Real>& cam, Real near_plane, Real blur,
                       int degree, Projected<Real>& o) {
   o.opacity = Real(1) / (Real(1) + std::exp(-P.opacity[i]));
   if (!(o.opacity >= Real(kMinAlpha))) return false;
-  quat_to_rotation(P.rotations + 4 * i, o.Rm, o.qn, o.qnorm);
-  const Real* ls = P.scales + 3 * i;
-  for (int k = 0; k < 3; ++k) o.s[k] = std::exp(ls[k]);
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) o.M[3 * r + c] = o.Rm[3 * r + c] * o.s[c];
-  const Real* M = o.M;
-  o.cov3[0] = M[0] * M[0] + M[1] * M[1] + M[2] * M[2];
-  o.cov3[1] = M[0] * M[3] + M[1] * M[4] + M[2] * M[5];
-  o.cov3[2] = M[0] * M[6] + M[1] * M[7] + M[2] * M[8];
-  o.cov3[3] = M[3] * M[3] + M[4] * M[4] + M[5] * M[5];
-  o.cov3[4] = M[3] * M[6] + M[4] * M[7] + M[5] * M[8];
-  o.cov3[5] = M[6] * M[6] + M[7] * M[7] + M[8] * M[8];
-
+  covariance_3d(P.scales + 3 * i, P.rotations + 4 * i, o.cov);
   const Real* p = P.positions + 3 * i;
-  const Real* R = cam.R;
-  o.tx0 = R[0] * p[0] + R[1] * p[1] + R[2] * p[2] + cam.t[0];
-  o.ty0 = R[3] * p[0] + R[4] * p[1] + R[5] * p[2] + cam.t[1];
-  o.tz = R[6] * p[0] + R[7] * p[1] + R[8] * p[2] + cam.t[2];
-  if (o.tz <= near_plane) return false;
-  const Real inv_z = Real(1) / o.tz;
-  const Real ux = o.tx0 * inv_z, uy = o.ty0 * inv_z;
-  o.txtz = std::fmin(std::fmax(ux, cam.lim_x_lo), cam.lim_x_hi);
-  o.tytz = std::fmin(std::fmax(uy, cam.lim_y_lo), cam.lim_y_hi);
-  o.clamp_x = o.txtz != ux;
-  o.clamp_y = o.tytz != uy;
-  o.tx = o.txtz * o.tz;
-  o.ty = o.tytz * o.tz;
-  const Real j00 = cam.fx * inv_z, j02 = -cam.fx * o.tx * inv_z * inv_z;
-  const Real j11 = cam.fy * inv_z, j12 = -cam.fy * o.ty * inv_z * inv_z;
-  for (int k = 0; k < 3; ++k) {
-    o.T0[k] = j00 * R[k] + j02 * R[6 + k];
-    o.T1[k] = j11 * R[3 + k] + j12 * R[6 + k];
-  }
-  const Real S[9] = {o.cov3[0], o.cov3[1], o.cov3[2], o.cov3[1], o.cov3[3], o.cov3[4], o.cov3[2], o.cov3[4], o.cov3[5]};
-  Real ST0[3], ST1[3];
-  for (int r = 0; r < 3; ++r) {
-    ST0[r] = S[3 * r] * o.T0[0] + S[3 * r + 1] * o.T0[1] + S[3 * r + 2] * o.T0[2];
-    ST1[r] = S[3 * r] * o.T1[0] + S[3 * r + 1] * o.T1[1] + S[3 * r + 2] * o.T1[2];
-  }
-  o.a = o.T0[0] * ST0[0] + o.T0[1] * ST0[1] + o.T0[2] * ST0[2] + blur;
-  o.b = o.T0[0] * ST1[0] + o.T0[1] * ST1[1] + o.T0[2] * ST1[2];
-  o.c = o.T1[0] * ST1[0] + o.T1[1] * ST1[1] + o.T1[2] * ST1[2] + blur;
-  const Real det = o.a * o.c - o.b * o.b;
-  if (!(det > Real(0))) return false;
-  const Real inv_det = Real(1) / det;
-  o.conic[0] = o.c * inv_det;
-  o.conic[1] = -o.b * inv_det;
-  o.conic[2] = o.a * inv_det;
-  const Real mid = Real(0.5) * (o.a + o.c);
-  const Real disc = std::sqrt(std::fmax(Real(0.1), mid * mid - det));
-  const Real l1 = mid + disc, l2 = mid - disc;
-  o.radius = int(std::ceil(Real(3) * std::sqrt(std::fmax(l1, l2))));
-  o.mean_x = cam.fx * o.tx0 * inv_z + cam.cx;
-  o.mean_y = cam.fy * o.ty0 * inv_z + cam.cy;
+  if (!project_footprint(cam, p, o.cov.cov, near_plane, blur, o.fp)) return false;
 
   Real dx = p[0] - cam.center[0], dy = p[1] - cam.center[1], dz = p[2] - cam.center[2];
   o.dir_norm = std::sqrt(dx * dx + dy * dy + dz * dz);
   if (o.dir_norm > 0) { dx /= o.dir_norm; dy /= o.dir_norm; dz /= o.dir_norm; }
   o.dir[0] = dx; o.dir[1] = dy; o.dir[2] = dz;
   Real basis[16];
-  sh_basis_t(degree, dx, dy, dz, basis);
+  sh_basis(degree, dx, dy, dz, basis);
   const int K = (degree + 1) * (degree + 1);
   const Real* coeffs = P.sh + size_t(i) * sh_coeff_count(P.sh_degree) * 3;
   for (int ch = 0; ch < 3; ++ch) {
@@ -228,7 +90,7 @@ void project_gaussian_backward(const GaussianParams<Real>& P, size_t i, const Di
   // Colour: rgb = max(sum_k b_k(dir) c_k + 0.5, 0).
   {
     Real basis[16], bx[16], by[16], bz[16];
-    sh_basis_t(degree, o.dir[0], o.dir[1], o.dir[2], basis);
+    sh_basis(degree, o.dir[0], o.dir[1], o.dir[2], basis);
     sh_basis_grad(degree, o.dir[0], o.dir[1], o.dir[2], bx, by, bz);
     const int K = (degree + 1) * (degree + 1);
     const int K_all = sh_coeff_count(P.sh_degree);
@@ -253,14 +115,15 @@ void project_gaussian_backward(const GaussianParams<Real>& P, size_t i, const Di
   }
 
   // Mean: mean_x = fx tx0 / tz + cx, mean_y = fy ty0 / tz + cy.
-  const Real inv_z = Real(1) / o.tz;
+  const BasicFootprint<Real>& fp = o.fp;
+  const Real inv_z = Real(1) / fp.depth;
   dt[0] += g.mean[0] * cam.fx * inv_z;
   dt[1] += g.mean[1] * cam.fy * inv_z;
-  dt[2] -= (g.mean[0] * cam.fx * o.tx0 + g.mean[1] * cam.fy * o.ty0) * inv_z * inv_z;
+  dt[2] -= (g.mean[0] * cam.fx * fp.tx0 + g.mean[1] * cam.fy * fp.ty0) * inv_z * inv_z;
 
   // Conic = inverse of V = [[a, b], [b, c]]: dL/dV = -Q Gq Q with Gq the symmetric matrix
   // gradient of Q (its off-diagonal entry appears twice, hence the halves).
-  const Real Q[4] = {o.conic[0], o.conic[1], o.conic[1], o.conic[2]};
+  const Real Q[4] = {fp.conic_a, fp.conic_b, fp.conic_b, fp.conic_c};
   const Real Gq[4] = {g.conic[0], Real(0.5) * g.conic[1], Real(0.5) * g.conic[1], g.conic[2]};
   Real QG[4], GV[4];
   QG[0] = Q[0] * Gq[0] + Q[1] * Gq[2]; QG[1] = Q[0] * Gq[1] + Q[1] * Gq[3];
@@ -268,7 +131,7 @@ void project_gaussian_backward(const GaussianParams<Real>& P, size_t i, const Di
   GV[0] = -(QG[0] * Q[0] + QG[1] * Q[2]); GV[1] = -(QG[0] * Q[1] + QG[1] * Q[3]);
   GV[2] = -(QG[2] * Q[0] + QG[3] * Q[2]); GV[3] = -(QG[2] * Q[1] + QG[3] * Q[3]);
   // V = T Sigma T^T + blur I: dL/dSigma = T^T GV T, dL/dT = 2 GV T Sigma.
-  const Real* Tm[2] = {o.T0, o.T1};
+  const Real* Tm[2] = {fp.T0, fp.T1};
   Real GS[9];
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) {
@@ -277,7 +140,7 @@ void project_gaussian_backward(const GaussianParams<Real>& P, size_t i, const Di
         for (int v = 0; v < 2; ++v) s += Tm[u][r] * GV[2 * u + v] * Tm[v][c];
       GS[3 * r + c] = s;
     }
-  const Real S[9] = {o.cov3[0], o.cov3[1], o.cov3[2], o.cov3[1], o.cov3[3], o.cov3[4], o.cov3[2], o.cov3[4], o.cov3[5]};
+  const Real S[9] = {o.cov.cov[0], o.cov.cov[1], o.cov.cov[2], o.cov.cov[1], o.cov.cov[3], o.cov.cov[4], o.cov.cov[2], o.cov.cov[4], o.cov.cov[5]};
   Real TS[2][3];
   for (int u = 0; u < 2; ++u)
     for (int c = 0; c < 3; ++c) TS[u][c] = Tm[u][0] * S[c] + Tm[u][1] * S[3 + c] + Tm[u][2] * S[6 + c];
@@ -293,17 +156,17 @@ void project_gaussian_backward(const GaussianParams<Real>& P, size_t i, const Di
   // j00 = fx / tz, j11 = fy / tz.
   dt[2] += -(cam.fx * dj00 + cam.fy * dj11) * iz2;
   // j02 = -fx tx / tz^2 with tx = tx0 (free) or lim * tz (clamped: j02 = -fx lim / tz).
-  if (o.clamp_x) {
-    dt[2] += dj02 * cam.fx * o.txtz * iz2;
+  if (fp.clamp_x) {
+    dt[2] += dj02 * cam.fx * fp.txtz * iz2;
   } else {
     dt[0] += -dj02 * cam.fx * iz2;
-    dt[2] += dj02 * 2 * cam.fx * o.tx0 * iz3;
+    dt[2] += dj02 * 2 * cam.fx * fp.tx0 * iz3;
   }
-  if (o.clamp_y) {
-    dt[2] += dj12 * cam.fy * o.tytz * iz2;
+  if (fp.clamp_y) {
+    dt[2] += dj12 * cam.fy * fp.tytz * iz2;
   } else {
     dt[1] += -dj12 * cam.fy * iz2;
-    dt[2] += dj12 * 2 * cam.fy * o.ty0 * iz3;
+    dt[2] += dj12 * 2 * cam.fy * fp.ty0 * iz3;
   }
   // t = R p + t_cam.
   for (int k = 0; k < 3; ++k) dp[k] += R[k] * dt[0] + R[3 + k] * dt[1] + R[6 + k] * dt[2];
@@ -314,20 +177,20 @@ void project_gaussian_backward(const GaussianParams<Real>& P, size_t i, const Di
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) {
       Real s = 0;
-      for (int k = 0; k < 3; ++k) s += (GS[3 * r + k] + GS[3 * k + r]) * o.M[3 * k + c];
+      for (int k = 0; k < 3; ++k) s += (GS[3 * r + k] + GS[3 * k + r]) * o.cov.M[3 * k + c];
       dM[3 * r + c] = s;
     }
   Real dR[9];
   for (int c = 0; c < 3; ++c) {
     Real ds = 0;
     for (int r = 0; r < 3; ++r) {
-      ds += dM[3 * r + c] * o.Rm[3 * r + c];
-      dR[3 * r + c] = dM[3 * r + c] * o.s[c];
+      ds += dM[3 * r + c] * o.cov.rot[3 * r + c];
+      dR[3 * r + c] = dM[3 * r + c] * o.cov.s[c];
     }
-    out.scales[3 * slot + c] += ds * o.s[c];  // d/d(log s) = s d/ds
+    out.scales[3 * slot + c] += ds * o.cov.s[c];  // d/d(log s) = s d/ds
   }
   Real dq[4];
-  quat_to_rotation_backward(o.qn, o.qnorm, dR, dq);
+  quat_to_rotmat_vjp(o.cov.qn, o.cov.qnorm, dR, dq);
   for (int k = 0; k < 4; ++k) out.rotations[4 * slot + k] += dq[k];
 }
 
@@ -345,16 +208,16 @@ struct DSplat {
 template <typename Real>
 bool make_splat(const Projected<Real>& f, size_t i, int32_t slot, int width, int height, int grid_x, int grid_y,
                 DSplat<Real>& out) {
-  const float r = float(f.radius);
-  const float mxf = float(f.mean_x), myf = float(f.mean_y);
+  const float r = float(f.fp.radius);
+  const float mxf = float(f.fp.mean_x), myf = float(f.fp.mean_y);
   const int rx0 = std::min(grid_x, std::max(0, int((mxf - r) / kTileSize)));
   const int ry0 = std::min(grid_y, std::max(0, int((myf - r) / kTileSize)));
   const int rx1 = std::min(grid_x, std::max(0, int((mxf + r + kTileSize - 1) / kTileSize)));
   const int ry1 = std::min(grid_y, std::max(0, int((myf + r + kTileSize - 1) / kTileSize)));
   if ((rx1 - rx0) * (ry1 - ry0) == 0) return false;
   const float level = 2.f * std::log(255.f * float(f.opacity));
-  const float ex = std::sqrt(std::max(0.f, level * float(f.a))) * 1.001f + 0.01f;
-  const float ey = std::sqrt(std::max(0.f, level * float(f.c))) * 1.001f + 0.01f;
+  const float ex = std::sqrt(std::max(0.f, level * float(f.fp.cov_a))) * 1.001f + 0.01f;
+  const float ey = std::sqrt(std::max(0.f, level * float(f.fp.cov_c))) * 1.001f + 0.01f;
   out.px0 = std::max(0, int(std::ceil(mxf - ex)));
   out.px1 = std::min(width - 1, int(std::floor(mxf + ex)));
   out.py0 = std::max(0, int(std::ceil(myf - ey)));
@@ -365,11 +228,11 @@ bool make_splat(const Projected<Real>& f, size_t i, int32_t slot, int width, int
   out.ty0 = std::max(ry0, out.py0 / kTileSize);
   out.ty1 = std::min(ry1, out.py1 / kTileSize + 1);
   if (out.tx0 >= out.tx1 || out.ty0 >= out.ty1) return false;
-  out.mx = f.mean_x;
-  out.my = f.mean_y;
-  out.A = f.conic[0];
-  out.B = f.conic[1];
-  out.C = f.conic[2];
+  out.mx = f.fp.mean_x;
+  out.my = f.fp.mean_y;
+  out.A = f.fp.conic_a;
+  out.B = f.fp.conic_b;
+  out.C = f.fp.conic_c;
   out.opacity = f.opacity;
   for (int c = 0; c < 3; ++c) out.rgb[c] = f.rgb[c];
   out.index = uint32_t(i);
