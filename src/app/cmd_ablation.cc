@@ -61,6 +61,8 @@ int run_eval_ablation(const Args& args) {
   opt.width = args.get_int("width", 480);
   opt.height = args.get_int("height", 360);
   if (!(opt.density > 0.01f && opt.density <= 50.f)) throw Error("--density must be in (0.01, 50]");
+  opt.camera_factor = args.get_int("camera-factor", 1);
+  if (opt.camera_factor < 1 || opt.camera_factor > 20) throw Error("--camera-factor must be between 1 and 20");
   const std::string only = args.get("only", "");
   const std::string overlays = args.get("overlays", "");
   // Clicks per synthetic task: its own click, then clicks drawn anywhere on the object
@@ -223,6 +225,9 @@ int run_eval_ablation(const Args& args) {
   // Each task's clicks (the same for every configuration).
   std::vector<std::vector<Click>> clicks_of;
   for (const auto& [s, t] : tasks) clicks_of.push_back(task_clicks(*s, *t, clicks_per_task));
+  // Every camera of a synthetic scene votes, as in the paper, unless --views says otherwise
+  // (auto: the K views segment chooses, as for a capture of many photos).
+  const std::string synthetic_views = args.has("views") ? setup.views_spec : "all";
   if (clicks_per_task > 1)
     std::printf("each synthetic task: its own click and %d drawn on the object in its clicked view%s; the mean IoU over "
                 "them (the rows below each configuration: the task's own click alone, the worst click)\n\n",
@@ -240,7 +245,8 @@ int run_eval_ablation(const Args& args) {
         segment::PipelineTimings tm;
         std::vector<Click> clicks{clicks_of[ti][k]};
         if (second_clicks && k > 0) clicks.insert(clicks.begin(), clicks_of[ti][0]);
-        auto session = segment::segment_from_prompts(s->scene.bundle, t->camera, clicks, sam, so, setup.views, "all", &tm);
+        auto session =
+            segment::segment_from_prompts(s->scene.bundle, t->camera, clicks, sam, so, setup.views, synthetic_views, &tm);
         const std::vector<bool> truth = demo_object_mask(s->scene, t->object);
         auto score = [&] {
           return segment::score_selection(s->scene.bundle.gaussians, s->scene.bundle.cameras, truth, session->selection());
@@ -336,7 +342,7 @@ int run_eval_ablation(const Args& args) {
 int run_ablation(const std::vector<std::string>& argv) {
   std::set<std::string> values = segment_value_flags();
   values.insert({"density", "width", "height", "set", "only", "configs", "overlays", "preview", "fixtures",
-                 "fixture-tasks", "clicks-per-task", "corrective-clicks"});
+                 "fixture-tasks", "clicks-per-task", "corrective-clicks", "camera-factor"});
   std::set<std::string> switches = segment_switch_flags();
   switches.insert("second-clicks");
   Args args(argv, values, switches);
@@ -406,7 +412,7 @@ RegisterCommand reg("ablation", "measure the segmentation's design choices on sy
                     "usage: isegman ablation [--set eval|demo] [--only TEXT] [--configs 0,2,...] [--overlays DIR]\n"
                     "                        [--density D] [--width W --height H] [--fixtures DIR]\n"
                     "                        [--fixture-tasks DIR|none] [--clicks-per-task K [--second-clicks]]\n"
-                    "                        [--corrective-clicks N]\n"
+                    "                        [--corrective-clicks N] [--camera-factor F]\n"
                     "                        [segment options]\n"
                     "  --set eval (default): the evaluation set of hard cases (gaps, occluders, thin, tiny and\n"
                     "  compound objects, coarse Gaussians, clean orbit objects), every addition beyond the paper\n"
@@ -422,7 +428,11 @@ RegisterCommand reg("ablation", "measure the segmentation's design choices on sy
                     "  positive click on the same object, instead of alone. --corrective-clicks N (eval set):\n"
                     "  after each synthetic task's own click, up to N clicks as a user corrects, at the most\n"
                     "  interior pixel of the larger error in the clicked view (positive where the selection\n"
-                    "  misses the object, negative where it takes something else); rows per click count.",
+                    "  misses the object, negative where it takes something else); rows per click count.\n"
+                    "  --camera-factor F (eval set): F x the cameras of each synthetic capture, F - 1 more\n"
+                    "  between each camera and the next along its path. Synthetic tasks vote with every camera\n"
+                    "  unless --views is given (--views auto: the K views segment chooses, as for a capture of\n"
+                    "  many photos).",
                     run_ablation);
 
 }  // namespace

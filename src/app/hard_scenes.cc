@@ -1408,6 +1408,50 @@ bool find_click(const DemoScene& demo, int object, const Vec3& anchor, int first
   return false;
 }
 
+namespace {
+
+// Spherical interpolation between unit quaternions (the shorter way round).
+Quat slerp(Quat a, Quat b, double t) {
+  double d = a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
+  if (d < 0) {
+    b = {-b.w, -b.x, -b.y, -b.z};
+    d = -d;
+  }
+  double wa = 1 - t, wb = t;
+  if (d < 0.9995) {
+    const double angle = std::acos(d);
+    wa = std::sin((1 - t) * angle) / std::sin(angle);
+    wb = std::sin(t * angle) / std::sin(angle);
+  }
+  return Quat{wa * a.w + wb * b.w, wa * a.x + wb * b.x, wa * a.y + wb * b.y, wa * a.z + wb * b.z}.normalized();
+}
+
+}  // namespace
+
+void densify_cameras(std::vector<Camera>& cams, int factor) {
+  if (factor <= 1 || cams.size() < 2) return;
+  std::vector<Camera> out;
+  for (size_t i = 0; i < cams.size(); ++i) {
+    out.push_back(cams[i]);
+    if (i + 1 == cams.size()) break;
+    const Camera& a = cams[i];
+    const Camera& b = cams[i + 1];
+    const Quat qa = Quat::from_matrix(a.R), qb = Quat::from_matrix(b.R);
+    const Vec3 ca = a.center(), cb = b.center();
+    for (int k = 1; k < factor; ++k) {
+      const double t = double(k) / factor;
+      Camera c = a;
+      c.R = slerp(qa, qb, t).to_matrix();
+      c.t = -(c.R * (ca + (cb - ca) * t));
+      out.push_back(c);
+    }
+  }
+  const size_t cut = cams[0].name.rfind('_');
+  const std::string prefix = cut == std::string::npos ? cams[0].name : cams[0].name.substr(0, cut);
+  for (size_t i = 0; i < out.size(); ++i) out[i] = named(out[i], int(i), prefix.c_str());
+  cams = std::move(out);
+}
+
 std::vector<EvalScene> make_eval_scenes(const EvalSetOptions& opt) {
   std::vector<EvalScene> out;
   out.push_back(garden(opt));
@@ -1422,6 +1466,11 @@ std::vector<EvalScene> make_eval_scenes(const EvalSetOptions& opt) {
   out.push_back(lounge(opt));
   out.push_back(porch(opt));
   out.push_back(workshop(opt));
+  if (opt.camera_factor > 1)
+    for (EvalScene& s : out) {
+      densify_cameras(s.scene.bundle.cameras, opt.camera_factor);
+      for (EvalTaskSpec& t : s.tasks) t.camera *= opt.camera_factor;  // camera i is now i * factor
+    }
   return out;
 }
 

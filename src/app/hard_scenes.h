@@ -31,9 +31,18 @@ struct EvalScene {
 struct EvalSetOptions {
   int width = 480, height = 360;
   float density = 1.0f;
+  // Photos per photo of each capture: camera_factor - 1 more between each camera and the
+  // next along its path, as a capture of 100-300 photos has (voting views must then be
+  // chosen among them). Tasks keep their camera and pixel.
+  int camera_factor = 1;
 };
 
 std::vector<EvalScene> make_eval_scenes(const EvalSetOptions& options = {});
+
+// `factor` x the cameras of a capture: between each camera and the next, factor - 1 more
+// on the way (centres on the line between them, orientations slerped), all renamed in path
+// order with the first name's prefix (orbit_000, orbit_001, ...). Camera i becomes i * factor.
+void densify_cameras(std::vector<Camera>& cameras, int factor);
 
 // A click on `object` near the 3D point `anchor`: the first camera from `first_camera` on
 // (wrapping) in which the anchor projects inside the image (with a margin) and a pixel
