@@ -134,4 +134,53 @@ std::vector<uint32_t> CentreIndex::within(const Vec3& p, double radius) const {
   return out;
 }
 
+namespace {
+
+// Whether segment a + t (b - a), t in [0, 1], meets the box [lo - r, hi + r] (slab test).
+bool segment_meets_box(const Vec3& a, const Vec3& b, const float* lo, const float* hi, double r) {
+  double t0 = 0, t1 = 1;
+  for (int k = 0; k < 3; ++k) {
+    const double d = b[k] - a[k], l = lo[k] - r, h = hi[k] + r;
+    if (std::fabs(d) < 1e-300) {
+      if (a[k] < l || a[k] > h) return false;
+      continue;
+    }
+    double ta = (l - a[k]) / d, tb = (h - a[k]) / d;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<uint32_t> CentreIndex::near_segment(const Vec3& a, const Vec3& b, double radius) const {
+  std::vector<uint32_t> out;
+  if (nodes_.empty() || !(radius >= 0)) return out;
+  const Vec3 d = b - a;
+  const double len2 = dot(d, d), r2 = radius * radius;
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const Node& n = nodes_[size_t(stack.back())];
+    stack.pop_back();
+    if (!segment_meets_box(a, b, n.lo, n.hi, radius)) continue;
+    if (n.left < 0) {
+      for (uint32_t j = n.begin; j < n.end; ++j) {
+        const uint32_t i = order_[j];
+        const Vec3 p{pos_[3 * i], pos_[3 * i + 1], pos_[3 * i + 2]};
+        const double t = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+        const Vec3 q = p - (a + d * t);
+        if (dot(q, q) <= r2) out.push_back(i);
+      }
+    } else {
+      stack.push_back(n.left);
+      stack.push_back(n.right);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 }  // namespace isegman

@@ -19,6 +19,9 @@ class CentreIndex {
   std::vector<uint32_t> nearest(const Vec3& p, int k, double max_distance) const;
   // Every centre within `radius` of p (boundary included), in index order.
   std::vector<uint32_t> within(const Vec3& p, double radius) const;
+  // Every centre within `radius` of the segment a-b (boundary included), in index order:
+  // what may stand in a line of sight.
+  std::vector<uint32_t> near_segment(const Vec3& a, const Vec3& b, double radius) const;
 
  private:
   struct Node {

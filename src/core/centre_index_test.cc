@@ -56,6 +56,28 @@ TEST(CentreIndex, RadiusQueryMatchesBruteForce) {
   }
 }
 
+TEST(CentreIndex, SegmentQueryMatchesBruteForce) {
+  const GaussianScene s = random_centres(2000, 10);
+  const CentreIndex index(s);
+  SplitMix64 rng(7);
+  size_t found = 0;
+  for (int q = 0; q < 50; ++q) {
+    const Vec3 a{rng.range(-1.5, 1.5), rng.range(-1.5, 1.5), rng.range(-1.5, 1.5)};
+    const Vec3 b = q % 10 == 0 ? a : Vec3{rng.range(-1.5, 1.5), rng.range(-1.5, 1.5), rng.range(-1.5, 1.5)};
+    const double r = rng.range(0.01, 0.2);
+    const Vec3 d = b - a;
+    std::vector<uint32_t> want;
+    for (uint32_t i = 0; i < s.size(); ++i) {
+      const double t = dot(d, d) > 0 ? std::clamp(dot(s.position(i) - a, d) / dot(d, d), 0.0, 1.0) : 0.0;
+      const Vec3 off = s.position(i) - (a + d * t);
+      if (dot(off, off) <= r * r) want.push_back(i);
+    }
+    found += want.size();
+    EXPECT_EQ(index.near_segment(a, b, r), want);
+  }
+  EXPECT_GT(found, 500u);  // the queries did meet centres
+}
+
 TEST(CentreIndex, EmptySceneAnswersNothing) {
   const GaussianScene s;
   const CentreIndex index(s);

@@ -4,11 +4,14 @@
 #include <chrono>
 #include <cstdio>
 
+#include "core/centre_index.h"
 #include "core/error.h"
 #include "models/tensor_memory.h"
 #include "segment/view_selection.h"
+#include "segment/voting_views.h"
 
 namespace isegman::segment {
+
 
 int view_of_camera(const Session& s, int camera_index) {
   for (size_t k = 0; k < s.views().size(); ++k)
@@ -33,23 +36,25 @@ std::unique_ptr<Session> segment_from_prompts(const SceneBundle& b, int camera_i
   auto t0 = std::chrono::steady_clock::now();
   PipelineTimings t;
   std::vector<SegmentView> views;
+  std::shared_ptr<const CentreIndex> neighbours;  // built for view selection, then the session's
   int auto_k = 0;
   if (parse_auto_views(views_spec, auto_k) && int(b.cameras.size()) > auto_k) {
-    // Voting-view selection: build the clicked view first, take the surface point under
-    // the first click from its expected depth, and choose the views that see it.
+    // Voting-view selection: build the clicked view first, then choose the views that see
+    // the clicked object (voting_views.h).
     views = build_views(b, {camera_index}, *sam, vo, progress, &t.ms_embedding);
     auto ts = std::chrono::steady_clock::now();
     const SegmentView& cv = views.front();
     const Click first = rescaled(clicks.front(), cam.width, cam.height, cv.camera.width, cv.camera.height);
-    Vec3 X;
-    const bool surface = surface_point(cv, first.x, first.y, so.propagation.min_alpha, X);
-    std::vector<int> chosen = surface ? select_views_for_point(b.cameras, camera_index, X, auto_k)
-                                      : spread_views(b.cameras, camera_index, auto_k);
+    // What may hide the object from a camera: the Gaussians near each line of sight.
+    neighbours = std::make_shared<const CentreIndex>(b.gaussians);
+    bool surface = false;
+    std::vector<int> chosen = choose_voting_views(b.gaussians, *neighbours, b.cameras, camera_index, cv, first, *sam,
+                                                  so.propagation.min_alpha, auto_k, &surface);
     t.ms_selection = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - ts).count();
     if (progress) {
       char line[256];
       std::snprintf(line, sizeof line, "auto views: %zu of %zu cameras %s", chosen.size(), b.cameras.size(),
-                    surface ? "see the clicked point, spread around it" : "spread over the scene (no surface under the click)");
+                    surface ? "see the clicked object, spread around it" : "spread over the scene (no surface under the click)");
       progress(line);
     }
     chosen.erase(std::remove(chosen.begin(), chosen.end(), camera_index), chosen.end());
@@ -68,6 +73,7 @@ std::unique_ptr<Session> segment_from_prompts(const SceneBundle& b, int camera_i
   t.views = int(views.size());
   t.ms_views = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   auto session = std::make_unique<Session>(b.gaussians, std::move(views), std::move(sam), so);
+  if (neighbours) session->share_neighbours(neighbours);
   const int v = view_of_camera(*session, camera_index);
   // By value: a click may add a view (see_through.h), which moves the session's views.
   const int work_width = session->views()[size_t(v)].camera.width, work_height = session->views()[size_t(v)].camera.height;

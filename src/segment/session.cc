@@ -235,7 +235,7 @@ int Session::add_view(SegmentView view) {
 }
 
 const CentreIndex& Session::neighbours() {
-  if (!neighbours_) neighbours_ = std::make_unique<CentreIndex>(scene_);
+  if (!neighbours_) neighbours_ = std::make_shared<const CentreIndex>(scene_);
   return *neighbours_;
 }
 

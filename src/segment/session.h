@@ -236,6 +236,9 @@ class Session {
 
   // Adds a view (e.g. a free camera) and returns its index.
   int add_view(SegmentView view);
+  // Uses a neighbour index of this session's scene that its caller already built (view
+  // selection's lines of sight), instead of building its own at the first decision.
+  void share_neighbours(std::shared_ptr<const CentreIndex> index) { neighbours_ = std::move(index); }
   // Moves the views out (for a session over another set of views); this session is then
   // empty and must not be used again.
   std::vector<SegmentView> take_views() { return std::move(views_); }
@@ -284,7 +287,7 @@ class Session {
   State state_;
   std::vector<State> history_;
   std::vector<std::pair<std::pair<int, float>, int>> peeled_;  // (view, cut depth) -> peeled view
-  std::unique_ptr<CentreIndex> neighbours_;  // built at the first decision that needs it
+  std::shared_ptr<const CentreIndex> neighbours_;  // built at the first decision that needs it
   const CentreIndex& neighbours();
   std::vector<bool> excluded_;
   LiveSelection live_;  // the selection while a round votes; its buffers serve every round

@@ -90,9 +90,9 @@ std::vector<int> farthest_points(const std::vector<int>& pool, int first, int k,
 
 }  // namespace
 
-std::vector<int> select_views_for_point(const std::vector<Camera>& cameras, int clicked, const Vec3& point, int k) {
-  if (clicked < 0 || clicked >= int(cameras.size())) throw Error("view selection: no clicked camera");
-  const std::vector<ViewCandidate> cand = score_views(cameras, clicked, point);
+namespace {
+
+std::vector<int> spread_over(const std::vector<ViewCandidate>& cand, int clicked, int k) {
   std::vector<int> pool;
   for (const ViewCandidate& c : cand)
     if (c.sees) pool.push_back(c.camera);
@@ -101,6 +101,57 @@ std::vector<int> select_views_for_point(const std::vector<Camera>& cameras, int 
       pool, clicked, k,
       [&](int a, int b) { return angle(cand[size_t(a)].direction, cand[size_t(b)].direction); },
       [&](int i) { return 0.25 + 0.75 * cand[size_t(i)].quality; });
+}
+
+}  // namespace
+
+std::vector<int> select_views_for_point(const std::vector<Camera>& cameras, int clicked, const Vec3& point, int k) {
+  if (clicked < 0 || clicked >= int(cameras.size())) throw Error("view selection: no clicked camera");
+  return spread_over(score_views(cameras, clicked, point), clicked, k);
+}
+
+void weigh_by_object(std::vector<ViewCandidate>& candidates, const std::vector<Camera>& cameras, int clicked,
+                     const std::vector<Vec3>& samples, const LineOpen& open, double min_seen) {
+  if (samples.empty()) return;
+  Vec3 centre{0, 0, 0};
+  for (const Vec3& p : samples) centre += p;
+  centre = centre * (1.0 / double(samples.size()));
+  double radius = 0;
+  for (const Vec3& p : samples) radius = std::max(radius, norm(p - centre));
+  radius *= 1.1;
+  for (ViewCandidate& c : candidates) {
+    if (!c.sees || c.camera == clicked) continue;
+    const Camera& cam = cameras[size_t(c.camera)];
+    const Vec3 eye = cam.center();
+    double seen = 0;
+    for (const Vec3& p : samples) {
+      double u = 0, v = 0, z = 0;
+      if (!cam.project(p, u, v, &z) || !(z > 0) || !(u >= 0 && v >= 0 && u < cam.width && v < cam.height)) continue;
+      // The line of sight up to where it enters the object's sphere.
+      const Vec3 d = p - eye;
+      const double len = norm(d);
+      if (!(len > 0)) continue;
+      const Vec3 dir = d * (1.0 / len);
+      const Vec3 oc = eye - centre;
+      const double b = dot(oc, dir), cc = dot(oc, oc) - radius * radius;
+      const double disc = b * b - cc;
+      double enter = len;
+      if (cc <= 0) enter = 0;  // the camera is inside the sphere: nothing between
+      else if (disc > 0) enter = std::min(len, -b - std::sqrt(disc));
+      seen += enter > 0 ? open(eye, eye + dir * enter) : 1.0;
+    }
+    seen /= double(samples.size());
+    if (seen < min_seen) c.sees = false;
+    c.quality *= seen;
+  }
+}
+
+std::vector<int> select_views_for_object(const std::vector<Camera>& cameras, int clicked, const Vec3& point,
+                                         const std::vector<Vec3>& samples, const LineOpen& open, int k) {
+  if (clicked < 0 || clicked >= int(cameras.size())) throw Error("view selection: no clicked camera");
+  std::vector<ViewCandidate> cand = score_views(cameras, clicked, point);
+  weigh_by_object(cand, cameras, clicked, samples, open);
+  return spread_over(cand, clicked, k);
 }
 
 std::vector<int> spread_views(const std::vector<Camera>& cameras, int clicked, int k) {

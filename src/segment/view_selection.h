@@ -5,6 +5,7 @@
 // renders) then grow with K, not with the number of cameras.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,22 @@ std::vector<ViewCandidate> score_views(const std::vector<Camera>& cameras, int c
 // direction); `clicked` is always first in. Returned sorted by camera index. When fewer
 // than k cameras see the point, only those are returned (plus the clicked one).
 std::vector<int> select_views_for_point(const std::vector<Camera>& cameras, int clicked, const Vec3& point, int k);
+
+// How open the line of sight between two points is, in [0, 1] (line_of_sight.h).
+using LineOpen = std::function<double(const Vec3& from, const Vec3& to)>;
+
+// What each candidate sees of the clicked object, from `samples` (3D points of it, lifted
+// from the clicked view's mask): the mean over them of "inside the frame" times how open the
+// line of sight is up to the sphere holding the samples (so that the object's own near side
+// does not hide its far side from a camera behind it). Below `min_seen` a camera is not a
+// candidate (the clicked one always is); otherwise its quality is scaled by what it sees.
+void weigh_by_object(std::vector<ViewCandidate>& candidates, const std::vector<Camera>& cameras, int clicked,
+                     const std::vector<Vec3>& samples, const LineOpen& open, double min_seen = 0.25);
+
+// select_views_for_point with the candidates weighed by the object they see: a view where
+// the object is hidden behind something or cut by the frame loses to one that shows it.
+std::vector<int> select_views_for_object(const std::vector<Camera>& cameras, int clicked, const Vec3& point,
+                                         const std::vector<Vec3>& samples, const LineOpen& open, int k);
 
 // Without a surface point: k cameras spread over all of them (farthest-point sampling on
 // the camera centres, from `clicked`, or camera 0 when clicked < 0). Sorted.

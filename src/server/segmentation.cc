@@ -11,6 +11,7 @@
 #include "segment/propagation.h"
 #include "segment/view_selection.h"
 #include "segment/views.h"
+#include "segment/voting_views.h"
 #include "server/app_error.h"
 #include "server/view_reuse.h"
 
@@ -323,6 +324,14 @@ bool Segmentation::prefetch_one(int camera, const Progress& progress) {
   return false;
 }
 
+const std::shared_ptr<const CentreIndex>& Segmentation::neighbours() {
+  if (!neighbours_ || neighbours_of_.lock() != snapshot_) {
+    neighbours_ = std::make_shared<const CentreIndex>(snapshot_->gaussians);
+    neighbours_of_ = snapshot_;
+  }
+  return neighbours_;
+}
+
 bool Segmentation::choose_views_for(const ClickRecord& c, const Progress& progress) {
   const int k_views = chosen_view_count();
   if ((c.camera_index < 0 && !c.free_camera) || hidden_of(c) || !session_->clicks().empty() || k_views == 0)
@@ -335,7 +344,8 @@ bool Segmentation::choose_views_for(const ClickRecord& c, const Progress& progre
   if (!segment::surface_point(clicked, at.x, at.y, base_session_.propagation.min_alpha, point)) return false;
   // A free camera's views are chosen around the training camera nearest it.
   const int anchor = c.free_camera ? nearest_camera(snapshot_->cameras, *c.free_camera, point) : c.camera_index;
-  std::vector<int> chosen = segment::select_views_for_point(snapshot_->cameras, anchor, point, k_views);
+  std::vector<int> chosen = segment::choose_voting_views(snapshot_->gaussians, *neighbours(), snapshot_->cameras, anchor,
+                                                        clicked, at, *sam_, base_session_.propagation.min_alpha, k_views);
   std::vector<int> have;
   for (const int camera : view_cameras())
     if (camera >= 0) have.push_back(camera);
@@ -383,6 +393,7 @@ bool Segmentation::choose_views_for(const ClickRecord& c, const Progress& progre
     free_views_.push_back(std::move(added[i]));
   }
   session_ = std::make_unique<segment::Session>(snapshot_->gaussians, std::move(views), sam_, session_options());
+  session_->share_neighbours(neighbours());
   return true;
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/centre_index.h"
 #include "core/click.h"
 #include "core/scene.h"
 #include "models/sam.h"
@@ -184,6 +185,11 @@ class Segmentation {
   SegmentSettings settings_;
   std::shared_ptr<const SceneBundle> snapshot_;
   uint64_t fingerprint_ = 0;
+  // The snapshot's neighbour index (voting-view selection, then the sessions' decisions),
+  // built at the first click that chooses views; rebuilt when the snapshot changes.
+  std::shared_ptr<const CentreIndex> neighbours_;
+  std::weak_ptr<const SceneBundle> neighbours_of_;
+  const std::shared_ptr<const CentreIndex>& neighbours();
   std::unique_ptr<segment::Session> session_;
   std::vector<ClickRecord> log_, redo_;
   std::vector<AddedView> free_views_;  // per session view: the camera it was added for, if any
