@@ -350,7 +350,10 @@ bool Segmentation::choose_views_for(const ClickRecord& c, const Progress& progre
   for (const int camera : view_cameras())
     if (camera >= 0) have.push_back(camera);
   std::sort(have.begin(), have.end());
-  if (have == chosen) return false;
+  if (have == chosen) {
+    session_->share_neighbours(neighbours());  // not a second index of the same scene
+    return false;
+  }
   // Every built view of this scene is a candidate: the session's and the spare ones. The
   // missing ones are built first, so a failure leaves the session as it was.
   if (spare_fingerprint_ != fingerprint_) spare_.clear();
