@@ -300,11 +300,21 @@ bool Segmentation::prefetch_one(int camera, const Progress& progress) {
     if (v.camera_index == camera) own = &v;
   std::vector<int> wanted;
   if (own) {
-    // The user clicks what they look at: the centre's surface stands in for the click.
-    Vec3 point;
-    const Camera& vc = own->camera;
-    if (!segment::surface_point(*own, vc.cx, vc.cy, base_session_.propagation.min_alpha, point)) return false;
-    wanted = segment::select_views_for_point(snapshot_->cameras, camera, point, k_views);
+    // The user clicks what they look at: a click at the centre stands in for it, and the
+    // views are those such a click would choose (choose_views_for).
+    // Chosen once per camera and scene: this runs again for each view it builds.
+    if (ahead_camera_ != camera || ahead_fingerprint_ != fingerprint_) {
+      const Camera& vc = own->camera;
+      const Click centre{vc.cx, vc.cy, 1};
+      bool surface = false;
+      ahead_views_ = segment::choose_voting_views(snapshot_->gaussians, *neighbours(), snapshot_->cameras, camera, *own,
+                                                  centre, *sam_, base_session_.propagation.min_alpha, k_views, &surface);
+      if (!surface) ahead_views_.clear();
+      ahead_camera_ = camera;
+      ahead_fingerprint_ = fingerprint_;
+    }
+    if (ahead_views_.empty()) return false;
+    wanted = ahead_views_;
   } else {
     wanted = {camera};
   }

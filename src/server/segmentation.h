@@ -190,6 +190,10 @@ class Segmentation {
   std::shared_ptr<const CentreIndex> neighbours_;
   std::weak_ptr<const SceneBundle> neighbours_of_;
   const std::shared_ptr<const CentreIndex>& neighbours();
+  // The views a click at the centre of camera `ahead_camera_` would choose (prefetch_one).
+  int ahead_camera_ = -1;
+  uint64_t ahead_fingerprint_ = 0;
+  std::vector<int> ahead_views_;
   std::unique_ptr<segment::Session> session_;
   std::vector<ClickRecord> log_, redo_;
   std::vector<AddedView> free_views_;  // per session view: the camera it was added for, if any
