@@ -12,7 +12,6 @@
 
 namespace isegman::segment {
 
-
 int view_of_camera(const Session& s, int camera_index) {
   for (size_t k = 0; k < s.views().size(); ++k)
     if (s.views()[k].camera_index == camera_index) return int(k);

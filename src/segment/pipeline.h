@@ -20,9 +20,10 @@ struct PipelineTimings {
 };
 
 // The clicked camera is always among the views. With views_spec "auto" / "auto:K" and more
-// than K cameras, the views are chosen for the first click (view_selection.h): the
-// clicked view is built first and the surface point under the click picks the K views
-// that see it, spread around it (all cameras spread when no surface is under the click).
+// than K cameras, the views are chosen for the first click (voting_views.h): the clicked
+// view is built first, and the K views that best see the clicked object (inside their
+// frame, with open lines of sight) are taken, spread around it (all cameras spread when no
+// surface is under the click).
 // Returns the session after the last click.
 std::unique_ptr<Session> segment_from_prompts(const SceneBundle& bundle, int camera_index,
                                               const std::vector<Click>& clicks,
