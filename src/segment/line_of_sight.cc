@@ -32,7 +32,7 @@ double LineOfSight::transmittance(const Vec3& from, const Vec3& to) const {
     // Inverse covariance R S^-2 R^T, with R's columns the Gaussian's axes.
     double q[4], R[9], qn[4];
     for (int k = 0; k < 4; ++k) q[k] = scene_.rotations[4 * size_t(i) + k];
-    quat_to_rotmat(q, R, qn);
+    if (!(quat_to_rotmat(q, R, qn) > 0)) continue;  // no orientation: no shape to block with
     double inv_s2[3];
     for (int k = 0; k < 3; ++k) inv_s2[k] = std::exp(-2.0 * double(scene_.scales[3 * size_t(i) + k]));
     const Vec3 v = from - scene_.position(i);
@@ -48,7 +48,7 @@ double LineOfSight::transmittance(const Vec3& from, const Vec3& to) const {
     const double t = dd > 0 ? std::clamp(-vd / dd, 0.0, 1.0) : 0.0;
     const double power = vv + 2 * t * vd + t * t * dd;
     const double alpha = std::min(0.99, opacity * std::exp(-0.5 * power));
-    if (alpha < 1.0 / 255) continue;
+    if (!(alpha >= 1.0 / 255)) continue;  // NaN from a degenerate scale too
     T *= 1.0 - alpha;
     if (T < 1e-4) return 0.0;
   }
