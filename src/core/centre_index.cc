@@ -105,25 +105,19 @@ std::vector<uint32_t> CentreIndex::nearest(const Vec3& p, int k, double max_dist
   return out;
 }
 
-std::vector<uint32_t> CentreIndex::within(const Vec3& p, double radius) const {
+template <typename NodeTest, typename PointTest>
+std::vector<uint32_t> CentreIndex::collect(NodeTest node_may_hold, PointTest holds) const {
   std::vector<uint32_t> out;
-  if (nodes_.empty() || !(radius >= 0)) return out;
-  const double r2 = radius * radius;
+  if (nodes_.empty()) return out;
   std::vector<int> stack{0};
   while (!stack.empty()) {
     const Node& n = nodes_[size_t(stack.back())];
     stack.pop_back();
-    double d2 = 0;
-    for (int a = 0; a < 3; ++a) {
-      const double v = p[a] < n.lo[a] ? n.lo[a] - p[a] : (p[a] > n.hi[a] ? p[a] - n.hi[a] : 0);
-      d2 += v * v;
-    }
-    if (d2 > r2) continue;
+    if (!node_may_hold(n.lo, n.hi)) continue;
     if (n.left < 0) {
       for (uint32_t j = n.begin; j < n.end; ++j) {
         const uint32_t i = order_[j];
-        const double dx = pos_[3 * i] - p.x, dy = pos_[3 * i + 1] - p.y, dz = pos_[3 * i + 2] - p.z;
-        if (dx * dx + dy * dy + dz * dz <= r2) out.push_back(i);
+        if (holds(Vec3{pos_[3 * i], pos_[3 * i + 1], pos_[3 * i + 2]})) out.push_back(i);
       }
     } else {
       stack.push_back(n.left);
@@ -132,6 +126,24 @@ std::vector<uint32_t> CentreIndex::within(const Vec3& p, double radius) const {
   }
   std::sort(out.begin(), out.end());
   return out;
+}
+
+std::vector<uint32_t> CentreIndex::within(const Vec3& p, double radius) const {
+  if (!(radius >= 0)) return {};
+  const double r2 = radius * radius;
+  return collect(
+      [&](const float* lo, const float* hi) {
+        double d2 = 0;
+        for (int a = 0; a < 3; ++a) {
+          const double v = p[a] < lo[a] ? lo[a] - p[a] : (p[a] > hi[a] ? p[a] - hi[a] : 0);
+          d2 += v * v;
+        }
+        return d2 <= r2;
+      },
+      [&](const Vec3& c) {
+        const double dx = c.x - p.x, dy = c.y - p.y, dz = c.z - p.z;
+        return dx * dx + dy * dy + dz * dz <= r2;
+      });
 }
 
 namespace {
@@ -157,30 +169,15 @@ bool segment_meets_box(const Vec3& a, const Vec3& b, const float* lo, const floa
 }  // namespace
 
 std::vector<uint32_t> CentreIndex::near_segment(const Vec3& a, const Vec3& b, double radius) const {
-  std::vector<uint32_t> out;
-  if (nodes_.empty() || !(radius >= 0)) return out;
+  if (!(radius >= 0)) return {};
   const Vec3 d = b - a;
   const double len2 = dot(d, d), r2 = radius * radius;
-  std::vector<int> stack{0};
-  while (!stack.empty()) {
-    const Node& n = nodes_[size_t(stack.back())];
-    stack.pop_back();
-    if (!segment_meets_box(a, b, n.lo, n.hi, radius)) continue;
-    if (n.left < 0) {
-      for (uint32_t j = n.begin; j < n.end; ++j) {
-        const uint32_t i = order_[j];
-        const Vec3 p{pos_[3 * i], pos_[3 * i + 1], pos_[3 * i + 2]};
-        const double t = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
-        const Vec3 q = p - (a + d * t);
-        if (dot(q, q) <= r2) out.push_back(i);
-      }
-    } else {
-      stack.push_back(n.left);
-      stack.push_back(n.right);
-    }
-  }
-  std::sort(out.begin(), out.end());
-  return out;
+  return collect([&](const float* lo, const float* hi) { return segment_meets_box(a, b, lo, hi, radius); },
+                 [&](const Vec3& p) {
+                   const double t = len2 > 0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+                   const Vec3 q = p - (a + d * t);
+                   return dot(q, q) <= r2;
+                 });
 }
 
 }  // namespace isegman

@@ -30,6 +30,10 @@ class CentreIndex {
     int32_t left = -1, right = -1;
   };
   int build(uint32_t begin, uint32_t end);
+  // The centres (sorted) of the leaves whose boxes pass `node_may_hold(lo, hi)` that pass
+  // `holds(p)`: the walk within() and near_segment() share.
+  template <typename NodeTest, typename PointTest>
+  std::vector<uint32_t> collect(NodeTest node_may_hold, PointTest holds) const;
   const float* pos_ = nullptr;  // the scene's positions
   std::vector<uint32_t> order_;
   std::vector<Node> nodes_;

@@ -24,6 +24,16 @@ bool parse_auto_views(const std::string& spec, int& k) {
   return true;
 }
 
+namespace {
+
+// Whether `p` projects inside the camera's frame, in front of it (at pixel (u, v)).
+bool in_frame(const Camera& c, const Vec3& p, double& u, double& v) {
+  double z = 0;
+  return c.project(p, u, v, &z) && z > 0 && u >= 0 && v >= 0 && u < c.width && v < c.height;
+}
+
+}  // namespace
+
 std::vector<ViewCandidate> score_views(const std::vector<Camera>& cameras, int clicked, const Vec3& point) {
   std::vector<ViewCandidate> out(cameras.size());
   double d0 = 0;
@@ -35,9 +45,8 @@ std::vector<ViewCandidate> score_views(const std::vector<Camera>& cameras, int c
     const Vec3 to_cam = c.center() - point;
     v.distance = norm(to_cam);
     v.direction = normalized(to_cam);
-    double u = 0, w = 0, z = 0;
-    if (!(v.distance > 0) || !c.project(point, u, w, &z) || !(z > 0)) continue;
-    if (!(u >= 0 && w >= 0 && u < c.width && w < c.height)) continue;
+    double u = 0, w = 0;
+    if (!(v.distance > 0) || !in_frame(c, point, u, w)) continue;
     v.sees = true;
     // Resolution on the target: a camera much nearer or farther than the clicked one
     // sees it at another scale (SAM and the voting prefer similar footprints).
@@ -125,8 +134,8 @@ void weigh_by_object(std::vector<ViewCandidate>& candidates, const std::vector<C
     const Vec3 eye = cam.center();
     double seen = 0;
     for (const Vec3& p : samples) {
-      double u = 0, v = 0, z = 0;
-      if (!cam.project(p, u, v, &z) || !(z > 0) || !(u >= 0 && v >= 0 && u < cam.width && v < cam.height)) continue;
+      double u = 0, v = 0;
+      if (!in_frame(cam, p, u, v)) continue;
       // The line of sight up to where it enters the object's sphere.
       const Vec3 d = p - eye;
       const double len = norm(d);
