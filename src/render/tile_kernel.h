@@ -41,7 +41,9 @@ inline float decode_half_width(uint16_t h) { return h == kWholeImage ? 1e9f : fl
 constexpr int kLanes = 8;
 
 struct PreparedFrame::Data {
-  std::vector<Splat> splats;          // visible Gaussians in depth order
+  // Visible Gaussians in depth order; after compact_frame in ascending Gaussian index (the
+  // tile lists keep the depth order), so per-splat sums read out in the order votes keep.
+  std::vector<Splat> splats;
   std::vector<float> rgb;             // 3 per splat; empty: the frame renders black
   std::vector<float> depth;           // per splat; empty after compact_frame without shading
   std::vector<uint32_t> tile_start;   // tiles + 1 offsets into tile_list

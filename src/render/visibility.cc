@@ -48,19 +48,28 @@ RenderOutput compact_frame(PreparedFrame& frame, const RenderSettings& s, bool k
       }
     start[t + 1] = uint32_t(kept);
   }
-  std::vector<uint32_t> remap(d.splats.size(), 0);
-  size_t live = 0;
-  for (size_t i = 0; i < used.size(); ++i)
-    if (used[i]) remap[i] = uint32_t(live++);
-  std::vector<Splat> splats(live);
-  std::vector<float> rgb(keep_shading && !d.rgb.empty() ? 3 * live : 0), depth(keep_shading ? live : 0);
+  // The kept splats in ascending Gaussian index (each Gaussian is one splat): a sums pass
+  // then accumulates per splat and reads the sums out in that order, without sorting.
+  std::vector<uint32_t> by_index, order;
   for (size_t i = 0; i < used.size(); ++i)
     if (used[i]) {
-      splats[remap[i]] = d.splats[i];
-      if (!rgb.empty())
-        for (int c = 0; c < 3; ++c) rgb[3 * size_t(remap[i]) + c] = d.rgb[3 * i + c];
-      if (keep_shading) depth[remap[i]] = d.depth[i];
+      by_index.push_back(d.splats[i].index);
+      order.push_back(uint32_t(i));
     }
+  radix_sort_pairs(by_index, order);
+  std::vector<uint32_t>().swap(by_index);
+  const size_t live = order.size();
+  std::vector<uint32_t> remap(d.splats.size(), 0);
+  std::vector<Splat> splats(live);
+  std::vector<float> rgb(keep_shading && !d.rgb.empty() ? 3 * live : 0), depth(keep_shading ? live : 0);
+  for (size_t j = 0; j < live; ++j) {
+    const size_t i = order[j];
+    remap[i] = uint32_t(j);
+    splats[j] = d.splats[i];
+    if (!rgb.empty())
+      for (int c = 0; c < 3; ++c) rgb[3 * j + c] = d.rgb[3 * i + c];
+    if (keep_shading) depth[j] = d.depth[i];
+  }
   std::vector<uint32_t> list(kept), weight(kept);
   for (size_t e = 0, k = 0; e < entries; ++e)
     if (blended[e]) {
@@ -152,14 +161,31 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     }
   }
   const int slots = resolve_threads(settings.threads);
+  // Each tile gives a (Gaussian, sum) pair per entry. Few pairs are sorted by Gaussian and
+  // summed; many (a large mask over a dense frame) are summed per splat instead, one array
+  // per worker, and read out in splat order, which in a compacted frame is ascending
+  // Gaussian index: the same integers in the same order, without the sort.
+  const size_t live = d.splats.size();
+  size_t entries = 0;
+  for (size_t t = 0; t < tiles; ++t)
+    if (touched[t] || raster[t]) entries += d.tile_start[t + 1] - d.tile_start[t];
+  const bool dense = stored && entries > live / 8;
+  std::vector<std::vector<uint64_t>> per_splat(dense ? size_t(slots) : 0);
   std::vector<std::vector<uint32_t>> keys(static_cast<size_t>(slots)), sums(static_cast<size_t>(slots));
   auto add_pairs = [&](int w, size_t t, const uint32_t* entry_sums, bool rest_of_tile) {
+    const size_t b = d.tile_start[t], n = d.tile_start[t + 1] - b;
+    if (dense) {
+      std::vector<uint64_t>& into = per_splat[size_t(w)];
+      if (into.empty()) into.assign(live, 0);
+      for (size_t e = 0; e < n; ++e) into[d.tile_list[b + e]] += rest_of_tile ? d.entry_weight[b + e] - entry_sums[e] : entry_sums[e];
+      return;
+    }
     std::vector<uint32_t>& k = keys[size_t(w)];
     std::vector<uint32_t>& s = sums[size_t(w)];
-    for (size_t e = d.tile_start[t]; e < d.tile_start[t + 1]; ++e) {
-      const uint32_t v = rest_of_tile ? d.entry_weight[e] - entry_sums[e - d.tile_start[t]] : entry_sums[e - d.tile_start[t]];
+    for (size_t e = 0; e < n; ++e) {
+      const uint32_t v = rest_of_tile ? d.entry_weight[b + e] - entry_sums[e] : entry_sums[e];
       if (v) {
-        k.push_back(d.splats[d.tile_list[e]].index);
+        k.push_back(d.splats[d.tile_list[b + e]].index);
         s.push_back(v);
       }
     }
@@ -188,6 +214,19 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
       if (touched[t] && !summed[t]) add_pairs(w, t, d.entry_weight.data() + d.tile_start[t], false);
     });
 
+  GaussianWeights out;
+  if (dense) {
+    for (size_t i = 0; i < live; ++i) {
+      uint64_t total = 0;
+      for (const std::vector<uint64_t>& from : per_splat)
+        if (!from.empty()) total += from[i];
+      if (total) {
+        out.index.push_back(d.splats[i].index);
+        out.weight.push_back(int64_t(total));
+      }
+    }
+    return out;
+  }
   // Sum per Gaussian: sort the (Gaussian, sum) pairs by Gaussian (integer sums, so the
   // order they were found in does not matter).
   size_t pairs = 0;
@@ -203,7 +242,6 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
   }
   for (size_t i = 0; i < pairs; ++i) position[i] = uint32_t(i);
   radix_sort_pairs(all_keys, position);
-  GaussianWeights out;
   for (size_t i = 0; i < pairs;) {
     const uint32_t g = all_keys[i];
     int64_t total = 0;

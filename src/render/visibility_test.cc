@@ -142,6 +142,17 @@ TEST(Visibility, SumsMatchTheRoundedWeightsOfEveryPixel) {
     expect_same(weight_sums(plain, &mask, s), masked);
     expect_same(weight_sums(compact, &mask, s), masked);
   }
+  // A small mask: few (tile, Gaussian) pairs, summed by sorting them, where a large mask's
+  // many pairs are summed per splat of the compacted frame (the same integers either way).
+  Image spot(cam.width, cam.height, 1);
+  for (int y = 36; y < 44; ++y)  // inside one tile
+    for (int x = 68; x < 76; ++x) spot.at(x, y) = 1.f;
+  const GaussianWeights in_spot = reference_sums(g, cam, &spot);
+  ASSERT_GT(in_spot.index.size(), 10u);
+  for (const RenderSettings& s : {one, three}) {
+    expect_same(weight_sums(plain, &spot, s), in_spot);
+    expect_same(weight_sums(compact, &spot, s), in_spot);
+  }
   // The mask's complement: its partly covered tiles are mostly covered, so a compacted
   // frame blends the pixels outside it there and subtracts their sums from the stored ones.
   Image complement = mask;
