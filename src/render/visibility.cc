@@ -1,6 +1,7 @@
 #include "render/visibility.h"
 
 #include <algorithm>
+#include <mutex>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -8,6 +9,41 @@
 #include "render/tile_kernel.h"
 
 namespace isegman {
+
+namespace {
+// Per-splat sum arrays, kept zeroed between passes: a dense frame's pass would otherwise
+// allocate and clear one per worker (tens of MB at millions of splats) every time. A pass
+// takes what it needs and gives the arrays back zeroed (its read-out clears them); at
+// most kKeptArrays stay, so the memory held is a few arrays of the largest frame.
+class SplatSums {
+ public:
+  std::vector<uint64_t> take(size_t n) {
+    std::vector<uint64_t> a;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!kept_.empty()) {
+        a = std::move(kept_.back());
+        kept_.pop_back();
+      }
+    }
+    if (a.size() < n) a.assign(n, 0);  // a grown array is zeroed whole; a kept one already is
+    return a;
+  }
+  void give_back(std::vector<uint64_t> a) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (kept_.size() < kKeptArrays) kept_.push_back(std::move(a));
+  }
+
+ private:
+  static constexpr size_t kKeptArrays = 4;
+  std::mutex mutex_;
+  std::vector<std::vector<uint64_t>> kept_;
+};
+SplatSums& splat_sums() {
+  static SplatSums pool;
+  return pool;
+}
+}  // namespace
 
 RenderOutput compact_frame(PreparedFrame& frame, const RenderSettings& s, bool keep_shading) {
   PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
@@ -176,7 +212,7 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     const size_t b = d.tile_start[t], n = d.tile_start[t + 1] - b;
     if (dense) {
       std::vector<uint64_t>& into = per_splat[size_t(w)];
-      if (into.empty()) into.assign(live, 0);
+      if (into.empty()) into = splat_sums().take(live);
       for (size_t e = 0; e < n; ++e) into[d.tile_list[b + e]] += rest_of_tile ? d.entry_weight[b + e] - entry_sums[e] : entry_sums[e];
       return;
     }
@@ -218,13 +254,18 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
   if (dense) {
     for (size_t i = 0; i < live; ++i) {
       uint64_t total = 0;
-      for (const std::vector<uint64_t>& from : per_splat)
-        if (!from.empty()) total += from[i];
+      for (std::vector<uint64_t>& from : per_splat)
+        if (!from.empty()) {
+          total += from[i];
+          from[i] = 0;  // zeroed for the next pass
+        }
       if (total) {
         out.index.push_back(d.splats[i].index);
         out.weight.push_back(int64_t(total));
       }
     }
+    for (std::vector<uint64_t>& from : per_splat)
+      if (!from.empty()) splat_sums().give_back(std::move(from));
     return out;
   }
   // Sum per Gaussian: sort the (Gaussian, sum) pairs by Gaussian (integer sums, so the
