@@ -2,24 +2,28 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <queue>
+#include <thread>
 
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace isegman {
 
 namespace {
 constexpr uint32_t kLeafSize = 16;
+constexpr uint32_t kParallelBuild = 1u << 16;  // smaller ranges build on one thread
 }  // namespace
 
-CentreIndex::CentreIndex(const GaussianScene& scene) : pos_(scene.positions.data()) {
+CentreIndex::CentreIndex(const GaussianScene& scene, int threads) : pos_(scene.positions.data()) {
   if (scene.size() >= (size_t(1) << 32)) throw Error("neighbour index", "too many Gaussians");
   order_.resize(scene.size());
   for (uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
-  if (!order_.empty()) build(0, uint32_t(order_.size()));
+  if (!order_.empty()) build(nodes_, 0, uint32_t(order_.size()), resolve_threads(threads) - 1);
 }
 
-int CentreIndex::build(uint32_t begin, uint32_t end) {
+int CentreIndex::build(std::vector<Node>& nodes, uint32_t begin, uint32_t end, int spare_threads) {
   Node node;
   node.begin = begin;
   node.end = end;
@@ -32,21 +36,54 @@ int CentreIndex::build(uint32_t begin, uint32_t end) {
       node.lo[a] = std::min(node.lo[a], pos_[3 * order_[i] + a]);
       node.hi[a] = std::max(node.hi[a], pos_[3 * order_[i] + a]);
     }
-  const int id = int(nodes_.size());
-  nodes_.push_back(node);
-  if (end - begin > kLeafSize) {
-    int axis = 0;
-    for (int a = 1; a < 3; ++a)
-      if (node.hi[a] - node.lo[a] > node.hi[axis] - node.lo[axis]) axis = a;
-    const uint32_t mid = begin + (end - begin) / 2;
-    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](uint32_t x, uint32_t y) {
-      float px = pos_[3 * x + axis], py = pos_[3 * y + axis];
-      return px < py || (px == py && x < y);
-    });
-    const int l = build(begin, mid);
-    const int r = build(mid, end);
-    nodes_[id].left = l;
-    nodes_[id].right = r;
+  const int id = int(nodes.size());
+  nodes.push_back(node);
+  if (end - begin <= kLeafSize) return id;
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (node.hi[a] - node.lo[a] > node.hi[axis] - node.lo[axis]) axis = a;
+  const uint32_t mid = begin + (end - begin) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](uint32_t x, uint32_t y) {
+    float px = pos_[3 * x + axis], py = pos_[3 * y + axis];
+    return px < py || (px == py && x < y);
+  });
+  if (spare_threads <= 0 || end - begin < kParallelBuild) {
+    const int l = build(nodes, begin, mid, 0);
+    const int r = build(nodes, mid, end, 0);
+    nodes[size_t(id)].left = l;
+    nodes[size_t(id)].right = r;
+    return id;
+  }
+  // The halves touch disjoint ranges of order_; each builds into its own list.
+  const int for_left = (spare_threads - 1) / 2, for_right = spare_threads - 1 - for_left;
+  std::vector<Node> left, right;
+  std::exception_ptr failed;
+  std::thread helper([&] {
+    try {
+      build(left, begin, mid, for_left);
+    } catch (...) {
+      failed = std::current_exception();
+    }
+  });
+  try {
+    build(right, mid, end, for_right);
+  } catch (...) {
+    helper.join();
+    throw;
+  }
+  helper.join();
+  if (failed) std::rethrow_exception(failed);
+  // Pre-order: this node, the left subtree, then the right one; child ids move with them.
+  for (const std::vector<Node>* part : {&left, &right}) {
+    const int32_t offset = int32_t(nodes.size());
+    (part == &left ? nodes[size_t(id)].left : nodes[size_t(id)].right) = offset;
+    for (Node n : *part) {
+      if (n.left >= 0) {
+        n.left += offset;
+        n.right += offset;
+      }
+      nodes.push_back(n);
+    }
   }
   return id;
 }

@@ -15,7 +15,8 @@ class CentreIndex {
  public:
   // Reads the scene's positions in place (no copy: 72 MB at 6M Gaussians): the scene must
   // outlive the index, its positions unchanged.
-  explicit CentreIndex(const GaussianScene& scene);
+  // Built on `threads` threads (0: every core); the tree does not depend on the count.
+  explicit CentreIndex(const GaussianScene& scene, int threads = 0);
   std::vector<uint32_t> nearest(const Vec3& p, int k, double max_distance) const;
   // Every centre within `radius` of p (boundary included), in index order.
   std::vector<uint32_t> within(const Vec3& p, double radius) const;
@@ -29,7 +30,11 @@ class CentreIndex {
     uint32_t begin, end;   // range in order_
     int32_t left = -1, right = -1;
   };
-  int build(uint32_t begin, uint32_t end);
+  // Builds the subtree of order_[begin, end) into `nodes` in pre-order and returns its
+  // root's id there. With spare threads a large range builds its two halves at once, each
+  // into a list of its own, joined after in the order one thread would have made them:
+  // the same tree, numbered the same, with any thread count.
+  int build(std::vector<Node>& nodes, uint32_t begin, uint32_t end, int spare_threads);
   // The centres (sorted) of the leaves whose boxes pass `node_may_hold(lo, hi)` that pass
   // `holds(p)`: the walk within() and near_segment() share.
   template <typename NodeTest, typename PointTest>

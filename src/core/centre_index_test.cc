@@ -78,6 +78,35 @@ TEST(CentreIndex, SegmentQueryMatchesBruteForce) {
   EXPECT_GT(found, 500u);  // the queries did meet centres
 }
 
+TEST(CentreIndex, ThreadsBuildTheSameTree) {
+  // Large enough that the build splits its upper levels over threads.
+  const GaussianScene s = random_centres(300000, 11);
+  const CentreIndex one(s, 1), four(s, 4);
+  SplitMix64 rng(12);
+  for (int q = 0; q < 40; ++q) {
+    const Vec3 p{rng.range(-1.1, 1.1), rng.range(-1.1, 1.1), rng.range(-1.1, 1.1)};
+    const Vec3 e{rng.range(-1.1, 1.1), rng.range(-1.1, 1.1), rng.range(-1.1, 1.1)};
+    const std::vector<uint32_t> near = four.nearest(p, 9, 0);
+    EXPECT_EQ(near, one.nearest(p, 9, 0));
+    const std::vector<uint32_t> ball = four.within(p, 0.05);
+    EXPECT_EQ(ball, one.within(p, 0.05));
+    EXPECT_EQ(four.near_segment(p, e, 0.01), one.near_segment(p, e, 0.01));
+    // And against every centre: the nearest one, and the ball's size.
+    double best = INFINITY;
+    uint32_t best_i = 0;
+    size_t inside = 0;
+    for (uint32_t i = 0; i < s.size(); ++i) {
+      const Vec3 d = s.position(i) - p;
+      const double d2 = dot(d, d);
+      if (d2 < best) best = d2, best_i = i;
+      inside += d2 <= 0.05 * 0.05;
+    }
+    ASSERT_FALSE(near.empty());
+    EXPECT_EQ(near.front(), best_i);
+    EXPECT_EQ(ball.size(), inside);
+  }
+}
+
 TEST(CentreIndex, EmptySceneAnswersNothing) {
   const GaussianScene s;
   const CentreIndex index(s);

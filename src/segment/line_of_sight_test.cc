@@ -79,9 +79,13 @@ TEST(LineOfSight, ViewSelectionLeavesOutCamerasTheObjectIsHiddenFrom) {
   for (const ViewCandidate& c : cand) {
     const Vec3 eye = cams[size_t(c.camera)].center();
     const bool behind_wall = eye.x < -1.2 && std::fabs(eye.y) < 1.2;  // the wall spans |y| <= 2 at x = -1
-    if (behind_wall) EXPECT_FALSE(c.sees) << c.camera;
+    if (behind_wall) {
+      EXPECT_FALSE(c.sees) << c.camera;
+    }
     // The cameras on the far side of the object see it through its own near side.
-    if (eye.x > 0) EXPECT_TRUE(c.sees) << c.camera;
+    if (eye.x > 0) {
+      EXPECT_TRUE(c.sees) << c.camera;
+    }
   }
   const std::vector<int> chosen = select_views_for_object(cams, 0, {0, 0, 0}, object, open, 10);
   for (int i : chosen) {
