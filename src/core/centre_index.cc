@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <map>
 #include <queue>
 #include <thread>
 
@@ -20,11 +21,25 @@ CentreIndex::CentreIndex(const GaussianScene& scene, int threads) : pos_(scene.p
   if (scene.size() >= (size_t(1) << 32)) throw Error("neighbour index", "too many Gaussians");
   order_.resize(scene.size());
   for (uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
-  if (!order_.empty()) build(nodes_, 0, uint32_t(order_.size()), resolve_threads(threads) - 1);
+  if (order_.empty()) return;
+  // Ranges halve at every level, so a level holds at most two sizes: the node count of a
+  // subtree per size is a short table, filled here and only read while building.
+  std::map<uint32_t, uint32_t> counts;
+  auto count = [&](auto& self, uint32_t n) -> uint32_t {
+    if (n <= kLeafSize) return 1;
+    auto it = counts.find(n);
+    if (it != counts.end()) return it->second;
+    const uint32_t c = 1 + self(self, n / 2) + self(self, n - n / 2);
+    counts[n] = c;
+    return c;
+  };
+  nodes_.resize(count(count, uint32_t(order_.size())));
+  build(0, uint32_t(order_.size()), 0, counts, resolve_threads(threads) - 1);
 }
 
-int CentreIndex::build(std::vector<Node>& nodes, uint32_t begin, uint32_t end, int spare_threads) {
-  Node node;
+void CentreIndex::build(uint32_t begin, uint32_t end, uint32_t id, const std::map<uint32_t, uint32_t>& counts,
+                        int spare_threads) {
+  Node& node = nodes_[id];
   node.begin = begin;
   node.end = end;
   for (int a = 0; a < 3; ++a) {
@@ -36,9 +51,7 @@ int CentreIndex::build(std::vector<Node>& nodes, uint32_t begin, uint32_t end, i
       node.lo[a] = std::min(node.lo[a], pos_[3 * order_[i] + a]);
       node.hi[a] = std::max(node.hi[a], pos_[3 * order_[i] + a]);
     }
-  const int id = int(nodes.size());
-  nodes.push_back(node);
-  if (end - begin <= kLeafSize) return id;
+  if (end - begin <= kLeafSize) return;
   int axis = 0;
   for (int a = 1; a < 3; ++a)
     if (node.hi[a] - node.lo[a] > node.hi[axis] - node.lo[axis]) axis = a;
@@ -47,45 +60,33 @@ int CentreIndex::build(std::vector<Node>& nodes, uint32_t begin, uint32_t end, i
     float px = pos_[3 * x + axis], py = pos_[3 * y + axis];
     return px < py || (px == py && x < y);
   });
+  // Pre-order: the left subtree right after this node, the right one after the left.
+  const uint32_t left_nodes = mid - begin <= kLeafSize ? 1 : counts.at(mid - begin);
+  node.left = int32_t(id + 1);
+  node.right = int32_t(id + 1 + left_nodes);
   if (spare_threads <= 0 || end - begin < kParallelBuild) {
-    const int l = build(nodes, begin, mid, 0);
-    const int r = build(nodes, mid, end, 0);
-    nodes[size_t(id)].left = l;
-    nodes[size_t(id)].right = r;
-    return id;
+    build(begin, mid, id + 1, counts, 0);
+    build(mid, end, id + 1 + left_nodes, counts, 0);
+    return;
   }
-  // The halves touch disjoint ranges of order_; each builds into its own list.
+  // The halves touch disjoint ranges of order_ and of nodes_: one is built on a thread of its own.
   const int for_left = (spare_threads - 1) / 2, for_right = spare_threads - 1 - for_left;
-  std::vector<Node> left, right;
   std::exception_ptr failed;
   std::thread helper([&] {
     try {
-      build(left, begin, mid, for_left);
+      build(begin, mid, id + 1, counts, for_left);
     } catch (...) {
       failed = std::current_exception();
     }
   });
   try {
-    build(right, mid, end, for_right);
+    build(mid, end, id + 1 + left_nodes, counts, for_right);
   } catch (...) {
     helper.join();
     throw;
   }
   helper.join();
   if (failed) std::rethrow_exception(failed);
-  // Pre-order: this node, the left subtree, then the right one; child ids move with them.
-  for (const std::vector<Node>* part : {&left, &right}) {
-    const int32_t offset = int32_t(nodes.size());
-    (part == &left ? nodes[size_t(id)].left : nodes[size_t(id)].right) = offset;
-    for (Node n : *part) {
-      if (n.left >= 0) {
-        n.left += offset;
-        n.right += offset;
-      }
-      nodes.push_back(n);
-    }
-  }
-  return id;
 }
 
 std::vector<uint32_t> CentreIndex::nearest(const Vec3& p, int k, double max_distance) const {

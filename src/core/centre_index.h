@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <vector>
 
 #include "core/math.h"
@@ -30,11 +31,11 @@ class CentreIndex {
     uint32_t begin, end;   // range in order_
     int32_t left = -1, right = -1;
   };
-  // Builds the subtree of order_[begin, end) into `nodes` in pre-order and returns its
-  // root's id there. With spare threads a large range builds its two halves at once, each
-  // into a list of its own, joined after in the order one thread would have made them:
-  // the same tree, numbered the same, with any thread count.
-  int build(std::vector<Node>& nodes, uint32_t begin, uint32_t end, int spare_threads);
+  // Builds the subtree of order_[begin, end) into nodes_[id...] in pre-order (nodes_ is
+  // sized up front; `counts`: the node count of a subtree per range size). With spare
+  // threads a large range builds its two halves at once: the same tree and ids with any
+  // thread count.
+  void build(uint32_t begin, uint32_t end, uint32_t id, const std::map<uint32_t, uint32_t>& counts, int spare_threads);
   // The centres (sorted) of the leaves whose boxes pass `node_may_hold(lo, hi)` that pass
   // `holds(p)`: the walk within() and near_segment() share.
   template <typename NodeTest, typename PointTest>
