@@ -98,7 +98,10 @@ TEST(CentreIndex, ThreadsBuildTheSameTree) {
     for (uint32_t i = 0; i < s.size(); ++i) {
       const Vec3 d = s.position(i) - p;
       const double d2 = dot(d, d);
-      if (d2 < best) best = d2, best_i = i;
+      if (d2 < best) {
+        best = d2;
+        best_i = i;
+      }
       inside += d2 <= 0.05 * 0.05;
     }
     ASSERT_FALSE(near.empty());

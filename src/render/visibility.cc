@@ -252,20 +252,35 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
 
   GaussianWeights out;
   if (dense) {
-    for (size_t i = 0; i < live; ++i) {
-      uint64_t total = 0;
-      for (std::vector<uint64_t>& from : per_splat)
-        if (!from.empty()) {
-          total += from[i];
-          from[i] = 0;  // zeroed for the next pass
+    // Read out in contiguous chunks in parallel, each into its own list, joined in order.
+    const size_t chunks = size_t(slots), per_chunk = (live + chunks - 1) / chunks;
+    std::vector<GaussianWeights> parts(chunks);
+    parallel_for(chunks, slots, [&](int, size_t c) {
+      GaussianWeights& part = parts[c];
+      for (size_t i = c * per_chunk, e = std::min(live, (c + 1) * per_chunk); i < e; ++i) {
+        uint64_t total = 0;
+        for (std::vector<uint64_t>& from : per_splat)
+          if (!from.empty()) {
+            total += from[i];
+            from[i] = 0;  // zeroed for the next pass
+          }
+        if (total) {
+          part.index.push_back(d.splats[i].index);
+          part.weight.push_back(int64_t(total));
         }
-      if (total) {
-        out.index.push_back(d.splats[i].index);
-        out.weight.push_back(int64_t(total));
       }
-    }
+    });
     for (std::vector<uint64_t>& from : per_splat)
       if (!from.empty()) splat_sums().give_back(std::move(from));
+    if (chunks == 1) return std::move(parts[0]);
+    size_t n = 0;
+    for (const GaussianWeights& part : parts) n += part.index.size();
+    out.index.reserve(n);
+    out.weight.reserve(n);
+    for (const GaussianWeights& part : parts) {
+      out.index.insert(out.index.end(), part.index.begin(), part.index.end());
+      out.weight.insert(out.weight.end(), part.weight.begin(), part.weight.end());
+    }
     return out;
   }
   // Sum per Gaussian: sort the (Gaussian, sum) pairs by Gaussian (integer sums, so the
