@@ -45,6 +45,20 @@ SplatSums& splat_sums() {
 }
 }  // namespace
 
+GaussianWeights join_in_order(std::vector<GaussianWeights> parts) {
+  if (parts.size() == 1) return std::move(parts[0]);
+  size_t n = 0;
+  for (const GaussianWeights& part : parts) n += part.index.size();
+  GaussianWeights out;
+  out.index.reserve(n);
+  out.weight.reserve(n);
+  for (const GaussianWeights& part : parts) {
+    out.index.insert(out.index.end(), part.index.begin(), part.index.end());
+    out.weight.insert(out.weight.end(), part.weight.begin(), part.weight.end());
+  }
+  return out;
+}
+
 RenderOutput compact_frame(PreparedFrame& frame, const RenderSettings& s, bool keep_shading) {
   PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
   if (d.compact) {
@@ -250,7 +264,6 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
       if (touched[t] && !summed[t]) add_pairs(w, t, d.entry_weight.data() + d.tile_start[t], false);
     });
 
-  GaussianWeights out;
   if (dense) {
     // Read out in contiguous chunks in parallel, each into its own list, joined in order.
     const size_t chunks = size_t(slots), per_chunk = (live + chunks - 1) / chunks;
@@ -272,16 +285,7 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     });
     for (std::vector<uint64_t>& from : per_splat)
       if (!from.empty()) splat_sums().give_back(std::move(from));
-    if (chunks == 1) return std::move(parts[0]);
-    size_t n = 0;
-    for (const GaussianWeights& part : parts) n += part.index.size();
-    out.index.reserve(n);
-    out.weight.reserve(n);
-    for (const GaussianWeights& part : parts) {
-      out.index.insert(out.index.end(), part.index.begin(), part.index.end());
-      out.weight.insert(out.weight.end(), part.weight.begin(), part.weight.end());
-    }
-    return out;
+    return join_in_order(std::move(parts));
   }
   // Sum per Gaussian: sort the (Gaussian, sum) pairs by Gaussian (integer sums, so the
   // order they were found in does not matter).
@@ -298,6 +302,7 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
   }
   for (size_t i = 0; i < pairs; ++i) position[i] = uint32_t(i);
   radix_sort_pairs(all_keys, position);
+  GaussianWeights out;
   for (size_t i = 0; i < pairs;) {
     const uint32_t g = all_keys[i];
     int64_t total = 0;

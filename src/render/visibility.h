@@ -30,6 +30,10 @@ struct GaussianWeights {
   std::vector<int64_t> weight;  // fixed point
 };
 
+// The lists a pass built in chunks (each over its own ascending run of Gaussians, the runs
+// in order) joined into one.
+GaussianWeights join_in_order(std::vector<GaussianWeights> parts);
+
 // Compacts `frame` (see above) with one full pass, which also renders it: returns what
 // rasterize(frame, settings) would. The frame then renders only with settings.alpha_max,
 // and colour or depth only when `keep_shading` (frames kept for voting need neither:

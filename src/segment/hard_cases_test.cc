@@ -625,7 +625,10 @@ TEST(HardCases, ACaptureOfManyPhotosVotesWithViewsThatSeeTheChair) {
   const EvalTaskSpec* t = nullptr;
   for (const EvalScene& e : dense)
     for (const EvalTaskSpec& k : e.tasks)
-      if (k.name == "patio/chair") s = &e, t = &k;
+      if (k.name == "patio/chair") {
+        s = &e;
+        t = &k;
+      }
   ASSERT_TRUE(s && t);
   const SceneBundle& b = s->scene.bundle;
   ASSERT_EQ(b.cameras.size(), 58u);

@@ -114,13 +114,7 @@ ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const 
     }
   };
   parallel_chunks(n, grain, threads, run);
-  if (parts.size() == 1) return std::move(parts[0]);
-  ViewVotes out;
-  for (const ViewVotes& part : parts) {
-    out.index.insert(out.index.end(), part.index.begin(), part.index.end());
-    out.weight.insert(out.weight.end(), part.weight.begin(), part.weight.end());
-  }
-  return out;
+  return join_in_order(std::move(parts));
 }
 
 std::vector<float> VoteAccumulator::ratios() const {
