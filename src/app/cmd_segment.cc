@@ -82,6 +82,7 @@ int run_segment(const std::vector<std::string>& argv) {
   }
   std::printf("timings: views %.0f ms (render + embeddings), propagation %.1f ms, SAM %.0f ms, voting %.0f ms\n",
               t.ms_views, t.ms_propagation, t.ms_sam, t.ms_voting);
+  std::printf("voting: %s (ms)\n", segment::describe(t.voting).c_str());
   std::printf("interaction time (clicks -> selection, embeddings cached): %.0f ms for %d round(s)\n",
               t.ms_interaction(), t.rounds);
   std::printf("selected %zu of %zu Gaussians\n", count, sel.size());

@@ -81,6 +81,7 @@ std::unique_ptr<Session> segment_from_prompts(const SceneBundle& b, int camera_i
     t.ms_propagation += r.ms_propagation;
     t.ms_sam += r.ms_sam;
     t.ms_voting += r.ms_voting;
+    t.voting += r.voting;
     ++t.rounds;
   }
   if (timings) *timings = t;

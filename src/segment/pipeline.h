@@ -16,6 +16,7 @@ struct PipelineTimings {
   double ms_embedding = 0;  // part of ms_views: SAM encoding (0 when cached)
   double ms_selection = 0;  // part of ms_views: choosing the "auto" views
   int views = 0, rounds = 0;
+  VotingParts voting;  // where ms_voting went, summed over the rounds
   double ms_interaction() const { return ms_propagation + ms_sam + ms_voting; }
 };
 

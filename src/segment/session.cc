@@ -27,6 +27,18 @@ const char* status_name(ViewStatus s) {
   return "?";
 }
 
+VotingParts& VotingParts::operator+=(const VotingParts& o) {
+  mask_votes += o.mask_votes;
+  agreement += o.agreement;
+  band += o.band;
+  depth_layers += o.depth_layers;
+  background += o.background;
+  accumulate += o.accumulate;
+  coverage += o.coverage;
+  decide += o.decide;
+  return *this;
+}
+
 std::string describe(const VotingParts& p) {
   char line[320];
   std::snprintf(line, sizeof line,
@@ -972,6 +984,18 @@ RoundReport Session::run_round(State& next, const State& prev) {
           }
           return a;
         };
+        // The same figures from the selection's coverage rendered over the whole view: the
+        // weight under the mask is the coverage summed there (the votes' fixed-point sums
+        // of the same weights, to their rounding), so no pass over the mask is needed.
+        auto measure_on = [&](const Image& m, const Image& full) {
+          Agreement a = agreement(m, full);
+          double inside = 0;
+          for (size_t i = 0; i < m.data.size(); ++i)
+            if (m.data[i] > 0.5f) inside += double(full.data[i]);
+          a.coverage = std::max(a.both, total / kVoteScale);
+          a.inside = total > 0 ? inside * kVoteScale / total : 0.0;
+          return a;
+        };
         Agreement a = measure(mask, raw, coverage);
         const bool failing = !passes(a);
         if (o.grow_to_selection && have_raw && a.mask_on_selection() >= o.min_mask_on_selection &&
@@ -986,25 +1010,34 @@ RoundReport Session::run_round(State& next, const State& prev) {
           const std::vector<float>& values = live.values();  // (timed as inspection's agreement)
           const size_t area = size_t(vs.mask_pixels);
           double best_iou = failing ? -1 : a.iou();
-          bool grew = false;
+          bool grew = false, best_counted = false;
           ViewState best;
           Image best_mask;
           ViewVotes best_votes;
-          auto consider = [&](ViewState grown) {
+          // `full`: the selection's coverage over the whole view, when rendered; the votes
+          // of a mask measured on it are counted only if it is taken.
+          auto consider = [&](ViewState grown, const Image* full) {
             size_t held = 0;
             for (size_t i = 0; i < mask.data.size(); ++i) held += mask.data[i] > 0.5f && grown.mask[i];
             if (size_t(grown.mask_pixels) <= area || double(grown.mask_pixels) > o.max_whole_growth * double(area) ||
                 double(held) < 0.9 * double(area))
               return;
             Image m = mask_image(grown.mask, views_[k].camera.width, views_[k].camera.height), cov;
-            ViewVotes votes = masked_votes(views_[k].frame, m, o.threads, &values, &cov);
-            const Agreement g = measure(m, votes, cov);
+            ViewVotes votes;
+            Agreement g;
+            if (full) {
+              g = measure_on(m, *full);
+            } else {
+              votes = masked_votes(views_[k].frame, m, o.threads, &values, &cov);
+              g = measure(m, votes, cov);
+            }
             if (!passes(g) || g.iou() < o.min_grown_iou || g.iou() <= best_iou) return;
             best_iou = g.iou();
             a = g;
             best = std::move(grown);
             best_mask = std::move(m);
             best_votes = std::move(votes);
+            best_counted = full == nullptr;
             grew = true;
           };
           // A passing mask tries the selection's prompt alone (below): its larger candidates,
@@ -1017,7 +1050,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
               continue;
             ViewState grown = vs;
             take_candidate(grown, results[k], int(c));
-            consider(std::move(grown));
+            consider(std::move(grown), nullptr);
           }
           // SAM prompted from the selection itself, as a view no click reached is: a click
           // near the frame's edge on a pillar leaving it segments a piece of the pillar in
@@ -1030,9 +1063,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
               const auto boxed = std::make_shared<const models::SegmentResult>(sam_->decode(views_[k].embedding, prompt));
               take_candidate(grown, boxed, boxed->mask_index);
               grown.from_selection = true;
-              consider(std::move(grown));
+              consider(std::move(grown), &full);
             }
           }
+          if (grew && !best_counted) best_votes = masked_votes(views_[k].frame, best_mask, o.threads);
           if (grew) {
             vs = std::move(best);
             mask = std::move(best_mask);

@@ -213,6 +213,7 @@ struct VotingParts {
   double accumulate = 0;   // centre evidence and adding the view to the sums
   double coverage = 0;     // the selection rendered in views no click reached, or to choose a candidate
   double decide = 0;       // deciding the live selection, and the coherence pass at the end
+  VotingParts& operator+=(const VotingParts& o);
 };
 
 // "mask votes 310, band 220, ..." (milliseconds).
