@@ -313,4 +313,48 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
   return out;
 }
 
+std::vector<uint8_t> tiles_listing(const PreparedFrame& frame, const std::vector<uint8_t>& tiles,
+                                   const std::vector<bool>& wanted, int threads) {
+  const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
+  const size_t n = size_t(frame.grid_x) * frame.grid_y;
+  if (tiles.size() != n) throw Error("tiles_listing: tile flags do not match the frame");
+  if (wanted.size() != frame.gaussians) throw Error("tiles_listing: Gaussian flags do not match the scene");
+  std::vector<uint8_t> out(n, 0);
+  parallel_for(n, threads, [&](int, size_t t) {
+    if (!tiles[t]) return;
+    for (uint32_t e = d.tile_start[t]; e < d.tile_start[t + 1]; ++e)
+      if (wanted[d.splats[d.tile_list[e]].index]) {
+        out[t] = 1;
+        return;
+      }
+  });
+  return out;
+}
+
+bool splat_tile_box(const PreparedFrame& frame, uint32_t gaussian, TileBox& box, size_t& cursor) {
+  const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
+  if (!d.compact) return false;
+  const std::vector<Splat>& sp = d.splats;
+  const size_t n = sp.size();
+  if (cursor > n || (cursor < n && sp[cursor].index > gaussian)) cursor = 0;  // not ascending: from the start
+  // Galloping: doubling steps from the cursor, then a binary search inside the last step.
+  size_t lo = cursor, step = 1;
+  while (lo + step < n && sp[lo + step].index < gaussian) {
+    lo += step;
+    step *= 2;
+  }
+  auto it = std::lower_bound(sp.begin() + std::ptrdiff_t(lo), sp.begin() + std::ptrdiff_t(std::min(n, lo + step + 1)),
+                             gaussian, [](const Splat& s, uint32_t g) { return s.index < g; });
+  cursor = size_t(it - sp.begin());
+  if (it == sp.end() || it->index != gaussian) return false;
+  // The pixels raster_tile evaluates for it: [ceil(mx - hx), floor(mx + hx)], the same in y.
+  const float hx = decode_half_width(it->hx), hy = decode_half_width(it->hy);
+  const int W = frame.camera.width, H = frame.camera.height;
+  const float x0 = std::max(std::ceil(it->mx - hx), 0.f), x1 = std::min(std::floor(it->mx + hx), float(W - 1));
+  const float y0 = std::max(std::ceil(it->my - hy), 0.f), y1 = std::min(std::floor(it->my + hy), float(H - 1));
+  if (x0 > x1 || y0 > y1) return false;
+  box = {int(x0) / kTileSize, int(y0) / kTileSize, int(x1) / kTileSize, int(y1) / kTileSize};
+  return true;
+}
+
 }  // namespace isegman

@@ -55,4 +55,19 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
                             const std::vector<float>* values = nullptr, Image* value_image = nullptr,
                             ValueExtent extent = ValueExtent::kMaskTiles);
 
+// The Gaussians a frame's tiles list (flags over the frame's tiles, grid_x * grid_y): for
+// each flagged tile, whether its list names a Gaussian `wanted` holds (one flag per
+// Gaussian of the scene); unflagged tiles come out 0.
+std::vector<uint8_t> tiles_listing(const PreparedFrame& frame, const std::vector<uint8_t>& tiles,
+                                   const std::vector<bool>& wanted, int threads = 0);
+// The tiles a Gaussian's splat reaches in a compacted frame (the box outside which its
+// alpha stays below 1/255, clipped to the image), inclusive. False when the frame holds no
+// splat of it (outside the view, culled, or dropped by the compaction) or the frame is not
+// compacted (its splats are then not in Gaussian order). `cursor`: where the search
+// starts, moved to where it ended, so ascending lookups each start from the last one.
+struct TileBox {
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+};
+bool splat_tile_box(const PreparedFrame& frame, uint32_t gaussian, TileBox& box, size_t& cursor);
+
 }  // namespace isegman

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "models/onnx_graph.h"
+#include "segment/band_ledger.h"
 #include "segment/interior.h"
 
 namespace isegman::segment {
@@ -767,6 +768,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
   });
   // A round is a function of the clicks: votes start empty and every view is re-judged.
   VoteAccumulator& acc = next.votes;
+  BandLedger band_ledger(scene_.size());
+  const std::function<const PreparedFrame&(size_t)> frame_of = [&](size_t k) -> const PreparedFrame& {
+    return views_[k].frame;
+  };
   // The selection of the votes so far, decided over the Gaussians with positive votes
   // only (live_selection.h) and only after a vote changed it.
   LiveSelection& live = live_;
@@ -852,24 +857,25 @@ RoundReport Session::run_round(State& next, const State& prev) {
       const Image band = whole_band(*vs.sam, vs.candidate, vs.sam_negative ? &vs.sam_negative->mask() : nullptr,
                                     o.max_whole_growth, o.min_granularity_score);
       for (float v : band.data) vs.whole_pixels += v > 0.5f;
-      if (vs.whole_pixels > 0) {
-        const ViewVotes in_band = masked_votes(view.frame, band, o.threads);
-        size_t p = 0;
-        for (size_t i = 0; i < in_band.index.size(); ++i) {
-          while (p < shown.size() && shown[p] < in_band.index[i]) ++p;
-          if (p < shown.size() && shown[p] == in_band.index[i]) continue;
-          whole.index.push_back(in_band.index[i]);
-          whole.weight.push_back(in_band.weight[i]);
-        }
-      }
+      // Its tiles over Gaussians that have had no positive vote wait (band_ledger.h).
+      if (vs.whole_pixels > 0) whole = band_ledger.add_view(k, view.frame, band, shown, o.threads);
     }
-    TimeInto timed{part.accumulate};
-    ViewVotes centred;
-    if (o.centre_rule.enabled)
-      centred = centred_votes(scene_, view.camera, mask, view.depth, vs.positive, all_votes_of_view(k),
-                              o.centre_rule.hidden_margin_pixels(view.camera), o.threads);
-    acc.add(vs.positive, all_votes_of_view(k), +1, &vs.neutral, &centred, &whole, o.threads);
-    live.add_support(vs.positive.index);
+    {
+      TimeInto timed{part.accumulate};
+      ViewVotes centred;
+      if (o.centre_rule.enabled)
+        centred = centred_votes(scene_, view.camera, mask, view.depth, vs.positive, all_votes_of_view(k),
+                                o.centre_rule.hidden_margin_pixels(view.camera), o.threads);
+      acc.add(vs.positive, all_votes_of_view(k), +1, &vs.neutral, &centred, &whole, o.threads);
+      live.add_support(vs.positive.index);
+    }
+    if (o.whole_neutral) {
+      TimeInto timed{part.band};
+      // Waiting band tiles that list a Gaussian this vote gave its first positive vote count
+      // now, before any decision reads its whole weight.
+      for (const ViewVotes& w : band_ledger.add_positive(vs.positive.index, frame_of, o.threads))
+        acc.add(ViewVotes{}, ViewVotes{}, +1, nullptr, nullptr, &w, o.threads);
+    }
     undecided = true;
     vs.status = ViewStatus::Accepted;
     ++rep.accepted;
@@ -911,6 +917,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   auto inspect_and_vote = [&](int forced_first) {
     fresh = unjudged;
     acc = VoteAccumulator(scene_.size());
+    band_ledger = BandLedger(scene_.size());
     live.reset(scene_.size(), {o.tau, min_weight, o.centre_rule, {o.whole_neutral, o.whole_min_share}}, &excluded_);
     first = true;
     negative_switched = false;
