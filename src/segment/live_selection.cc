@@ -1,7 +1,6 @@
 #include "segment/live_selection.h"
 
 #include <algorithm>
-#include <iterator>
 
 namespace isegman::segment {
 
@@ -21,7 +20,9 @@ void LiveSelection::reset(size_t n, const SelectionRule& rule, const std::vector
   }
   for (uint32_t i : members_) set(i, false);
   members_.clear();
-  support_.clear();
+  support_bits_.assign((n + 63) / 64, 0);
+  support_list_.clear();
+  support_listed_ = true;
   rule_ = rule;
   min_fixed_ = VoteAccumulator::min_fixed(rule.min_total);
   // P > tau * A with A > 0 needs P > 0 when tau >= 0; so does the centre rule's P > tau_low * A.
@@ -30,10 +31,17 @@ void LiveSelection::reset(size_t n, const SelectionRule& rule, const std::vector
 }
 
 void LiveSelection::add_support(const std::vector<uint32_t>& positive) {
-  scratch_.clear();
-  scratch_.reserve(support_.size() + positive.size());
-  std::set_union(support_.begin(), support_.end(), positive.begin(), positive.end(), std::back_inserter(scratch_));
-  support_.swap(scratch_);
+  for (uint32_t i : positive) support_bits_[i >> 6] |= uint64_t(1) << (i & 63);
+  support_listed_ = support_listed_ && positive.empty();
+}
+
+const std::vector<uint32_t>& LiveSelection::support() const {
+  if (!support_listed_) {
+    support_list_.clear();
+    for_each_supported([&](uint32_t i) { support_list_.push_back(i); });
+    support_listed_ = true;
+  }
+  return support_list_;
 }
 
 void LiveSelection::decide(const VoteAccumulator& votes) {
@@ -45,7 +53,7 @@ void LiveSelection::decide(const VoteAccumulator& votes) {
   if (everyone_)
     for (uint32_t i = 0; i < uint32_t(votes.size()); ++i) visit(i);
   else
-    for (uint32_t i : support_) visit(i);
+    for_each_supported(visit);
   for (uint32_t i : members_) set(i, true);
 }
 

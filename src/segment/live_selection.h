@@ -27,7 +27,7 @@ class LiveSelection {
   // selected is cleared). `excluded` (null, empty or one flag per Gaussian) are never
   // eligible; it must outlive the round.
   void reset(size_t n, const SelectionRule& rule, const std::vector<bool>* excluded);
-  // After votes.add(positive, ...): the Gaussians `positive` (ascending) votes for.
+  // After votes.add(positive, ...): the Gaussians `positive` votes for.
   void add_support(const std::vector<uint32_t>& positive);
   // Decides the selection from `votes` (which add_support has followed since reset).
   void decide(const VoteAccumulator& votes);
@@ -40,18 +40,31 @@ class LiveSelection {
   const std::vector<float>& values() const { return values_; }
   // The Gaussians strong() holds, ascending.
   const std::vector<uint32_t>& members() const { return members_; }
-  // Every Gaussian with a positive vote since reset, ascending: outside it P = 0.
-  const std::vector<uint32_t>& support() const { return support_; }
+  // Every Gaussian with a positive vote since reset, ascending: outside it P = 0. Listed
+  // from the bits on the first call after a change (not for concurrent callers).
+  const std::vector<uint32_t>& support() const;
 
  private:
   void set(uint32_t i, bool s);
+  // f(i) for every Gaussian i of the support, ascending.
+  template <class F>
+  void for_each_supported(F&& f) const {
+    for (size_t w = 0; w < support_bits_.size(); ++w)
+      for (uint64_t bits = support_bits_[w]; bits != 0; bits &= bits - 1)
+        f(uint32_t(w * 64 + size_t(__builtin_ctzll(bits))));
+  }
   SelectionRule rule_;
   int64_t min_fixed_ = 0;
   bool everyone_ = false;  // a rule that can select P = 0 (tau < 0): decide every Gaussian
   const std::vector<bool>* excluded_ = nullptr;
   std::vector<bool> strong_, eligible_;
   std::vector<float> values_;
-  std::vector<uint32_t> members_, support_, scratch_;
+  std::vector<uint32_t> members_;
+  // The support as one bit per Gaussian: a view's votes set their bits in O(their count);
+  // merging sorted lists instead cost O(support) a view (~1M entries at 6M Gaussians).
+  std::vector<uint64_t> support_bits_;
+  mutable std::vector<uint32_t> support_list_;  // support(), built when asked
+  mutable bool support_listed_ = false;
 };
 
 }  // namespace isegman::segment
