@@ -8,6 +8,7 @@
 #include <map>
 
 #include "render/visibility.h"
+#include "segment/test_masks.h"
 
 namespace isegman::segment {
 namespace {
@@ -44,13 +45,8 @@ Camera wall_camera() {
   return c;
 }
 
-// A mask over columns [x0, x1) and rows [y0, y1).
-Image box(int x0, int x1, int y0, int y1) {
-  Image m(160, 96, 1);
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) m.at(x, y) = 1.f;
-  return m;
-}
+// A mask of the camera's size over columns [x0, x1) and rows [y0, y1).
+Image box(int x0, int x1, int y0, int y1) { return testing::box_mask(160, 96, x0, x1, y0, y1); }
 
 struct Case {
   GaussianScene scene = scattered_scene();

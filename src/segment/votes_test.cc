@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/sh.h"
+#include "segment/test_masks.h"
 
 namespace isegman::segment {
 namespace {
@@ -17,13 +18,7 @@ void add_gaussian(GaussianScene& g, Vec3 p, double s, double o) {
   g.sh.insert(g.sh.end(), {0.f, 0.f, 0.f});
 }
 
-// A w x h one-channel mask set to 1 over columns [x0, x1) and rows [y0, y1).
-Image box_mask(int w, int h, int x0, int x1, int y0, int y1) {
-  Image m(w, h, 1);
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) m.at(x, y) = 1.f;
-  return m;
-}
+using testing::box_mask;
 
 Camera axis_camera() {
   Camera c;
