@@ -610,6 +610,20 @@ TEST(HardCases, APlantBesideTheClickedShrubIsNotSelected) {
   EXPECT_LT(ours.background, without.background / 2);
 }
 
+TEST(HardCases, TheCycadsFrondsKeepOutTheCabinetSeenBetweenThem) {
+  // The atrium was built after everything else was tuned (failure 1 as LLFF's fern shows
+  // it): a fan of fronds before a cabinet that shows only between them, coarse Gaussians.
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // The paper's pipeline takes in ~1,250 Gaussians of scenery (the cabinet, the wall) at
+  // 320x240, and ~1,400 with every addition but the depth layers; the additions 5.
+  const Outcome ours = run("atrium/plant", SessionOptions()), paper_only = run("atrium/plant", paper());
+  std::printf("[ atrium plant ] IoU %.1f (paper %.1f); scenery selected %zu (paper %zu) of %zu\n", 100 * ours.iou,
+              100 * paper_only.iou, ours.scenery, paper_only.scenery, ours.selected);
+  EXPECT_GT(ours.iou, 0.85);
+  EXPECT_GT(ours.iou, paper_only.iou + 0.03);
+  EXPECT_LT(ours.scenery * 20, paper_only.scenery);
+}
+
 TEST(HardCases, ACaptureOfManyPhotosVotesWithViewsThatSeeTheChair) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // The patio with three times the cameras (58), as a capture of many photos: 20 of them
