@@ -118,6 +118,20 @@ Camera named(Camera cam, int id, const char* prefix) {
   return cam;
 }
 
+// A forward-facing capture as LLFF scenes are taken: a 5 x 4 grid of nearly parallel
+// cameras, row by row from the bottom (grid_000, ...), at `eye` + (column - 2, row - 1.5)
+// steps of `step` (x across, z up), each looking at `target` moved the same way by `aim`.
+void forward_grid(DemoScene& demo, const Vec3& eye, const Vec3& step, const Vec3& target, const Vec3& aim, double fov,
+                  const EvalSetOptions& opt) {
+  int id = 0;
+  for (int row = 0; row < 4; ++row)
+    for (int col = 0; col < 5; ++col) {
+      const Vec3 from{eye.x + (col - 2) * step.x, eye.y, eye.z + (row - 1.5) * step.z};
+      const Vec3 to{target.x + (col - 2) * aim.x, target.y, target.z + (row - 1.5) * aim.z};
+      demo.bundle.cameras.push_back(named(Camera::look_at(from, to, {0, 0, 1}, opt.width, opt.height, fov), id++, "grid"));
+    }
+}
+
 void add_task(EvalScene& s, const std::string& object, const std::string& kind, int label, const Vec3& anchor,
               int first_camera, double search_px = 12) {
   EvalTaskSpec t;
@@ -520,13 +534,7 @@ EvalScene study(const EvalSetOptions& opt) {
   cylinder(b, lamp_c + Vec3{0, 0, 0.03}, 0.012, 0.012, 1.45, int(700 * d), 0.01 * sz, {0.15, 0.15, 0.15}, lamp, false);
   cylinder(b, lamp_c + Vec3{0, 0, 1.4}, 0.22, 0.12, 0.28, int(1200 * d), 0.025 * sz, {0.92, 0.86, 0.70}, lamp, false);
   // The capture: a 5 x 4 grid of cameras 3.4 m from the wall, all looking nearly straight ahead.
-  int id = 0;
-  for (int row = 0; row < 4; ++row)
-    for (int col = 0; col < 5; ++col) {
-      const Vec3 eye{0.25 + (col - 2) * 0.22, -1.0, 1.15 + (row - 1.5) * 0.16};
-      const Vec3 target{0.25 + (col - 2) * 0.08, wall_y, 1.1 + (row - 1.5) * 0.05};
-      demo.bundle.cameras.push_back(named(Camera::look_at(eye, target, {0, 0, 1}, opt.width, opt.height, 62.0), id++, "grid"));
-    }
+  forward_grid(demo, {0.25, -1.0, 1.15}, {0.22, 0, 0.16}, {0.25, wall_y, 1.1}, {0.08, 0, 0.05}, 62.0, opt);
   add_task(s, "picture", "flat object hanging on a wall", picture, {-0.5, wall_y - 0.01, 1.6}, 7);
   add_task(s, "book", "one of a row of touching objects", book, {shelf_c.x - 0.14 + 0.033, shelf_c.y - 0.1, 0.55}, 12);
   add_task(s, "mug", "small object with a handle", mug, mug_c + Vec3{0, -0.04, 0.05}, 2);
@@ -770,13 +778,7 @@ EvalScene museum(const EvalSetOptions& opt) {
     }
   }
   // The capture: a 5 x 4 grid of cameras 3 m from the wall, all looking nearly straight ahead.
-  int id = 0;
-  for (int row = 0; row < 4; ++row)
-    for (int col = 0; col < 5; ++col) {
-      const Vec3 eye{-0.2 + (col - 2) * 0.25, -1.4, 1.25 + (row - 1.5) * 0.18};
-      const Vec3 target{-0.2 + (col - 2) * 0.08, wall_y, 1.2 + (row - 1.5) * 0.05};
-      demo.bundle.cameras.push_back(named(Camera::look_at(eye, target, {0, 0, 1}, opt.width, opt.height, 66.0), id++, "grid"));
-    }
+  forward_grid(demo, {-0.2, -1.4, 1.25}, {0.25, 0, 0.18}, {-0.2, wall_y, 1.2}, {0.08, 0, 0.05}, 66.0, opt);
   add_task(s, "skeleton", "thin bones with gaps in front of a wall (NVOS trex)", skeleton, {-0.6, body_y - 0.2, spine_z - 0.15},
            7);
   add_task(s, "orchid", "a flower spike on a thin stem beside another, before foliage", orchid, p_orchid_anchor, 12, 20);
@@ -1442,13 +1444,7 @@ EvalScene atrium(const EvalSetOptions& opt) {
     b.floater({rng.range(-1.6, 1.6), rng.range(-0.8, 1.4), rng.range(0.2, 2.3)}, rng.range(0.03, 0.08),
               Vec3{0.5, 0.5, 0.5} + Vec3{1, 1, 1} * (0.2 * rng.normal()), rng.range(0.05, 0.25));
   // The capture: a 5 x 4 grid of cameras 2 m from the plant, looking nearly straight ahead.
-  int id = 0;
-  for (int row = 0; row < 4; ++row)
-    for (int col = 0; col < 5; ++col) {
-      const Vec3 eye{0.1 + (col - 2) * 0.1, -2.0, 1.25 + (row - 1.5) * 0.08};
-      const Vec3 target{0.1 + (col - 2) * 0.04, wall_y, 0.45 + (row - 1.5) * 0.03};
-      demo.bundle.cameras.push_back(named(Camera::look_at(eye, target, {0, 0, 1}, opt.width, opt.height, 64.0), id++, "grid"));
-    }
+  forward_grid(demo, {0.1, -2.0, 1.25}, {0.1, 0, 0.08}, {0.1, wall_y, 0.45}, {0.04, 0, 0.03}, 64.0, opt);
   add_task(s, "plant", "arching fronds before a cabinet seen only between them (LLFF fern)", plant, crown + Vec3{0.1, -0.1, 0.2},
            12, 20);
   add_task(s, "planter", "a long box with fronds hanging over its front, the floor between it and the frame", planter,
