@@ -120,7 +120,8 @@ Camera named(Camera cam, int id, const char* prefix) {
 
 // A forward-facing capture as LLFF scenes are taken: a 5 x 4 grid of nearly parallel
 // cameras, row by row from the bottom (grid_000, ...), at `eye` + (column - 2, row - 1.5)
-// steps of `step` (x across, z up), each looking at `target` moved the same way by `aim`.
+// steps of `step` (its x across, its z up; its y is not used), each looking at `target`
+// moved the same way by `aim`.
 void forward_grid(DemoScene& demo, const Vec3& eye, const Vec3& step, const Vec3& target, const Vec3& aim, double fov,
                   const EvalSetOptions& opt) {
   int id = 0;
