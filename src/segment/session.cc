@@ -124,12 +124,9 @@ bool holds(const Mask& mask, const Click& k) {
 // A clicked view's candidate (the user's view, or one a click was propagated to). SAM's own
 // choice, unless it looks like the surroundings (the wall or floor around the click: a pale
 // skull on a pale wall, a rug on the floor) while another candidate holding every positive
-// click stays off all borders but one (an object the click picks out); then the smallest such
-// candidate: the finest thing at the click (a box on a roof, not the roof around it). Views
-// whose own choice is not the surroundings still vote it, and the granularity retries grow a
-// first mask the other views find too fine, while nothing shrinks one that is too coarse.
-// A click that means the surroundings still gets them from a second view or click; one
-// that means the object gets it at once.
+// click stays off all borders but one (an object the click picks out); then the largest such
+// candidate. A click that means the surroundings still gets them from a second view or
+// click; one that means the object gets it at once.
 int object_candidate(const models::SegmentResult& r, const std::vector<Click>& clicks, double min_score,
                      double min_surroundings_share) {
   const bool positive = std::any_of(clicks.begin(), clicks.end(), [](const Click& k) { return k.label == 1; });
@@ -142,7 +139,7 @@ int object_candidate(const models::SegmentResult& r, const std::vector<Click>& c
     if (int(c) == r.mask_index || r.candidate_scores[c] < min_score || borders_reached(m) > 1) continue;
     const bool holds_all = std::all_of(clicks.begin(), clicks.end(), [&](const Click& k) { return k.label != 1 || holds(m, k); });
     const size_t area = mask_area(m);
-    if (holds_all && (best_area == 0 || area < best_area)) {
+    if (holds_all && area > best_area) {
       best = int(c);
       best_area = area;
     }
