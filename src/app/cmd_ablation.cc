@@ -112,6 +112,7 @@ int run_eval_ablation(const Args& args) {
       {"- click by click", [](segment::SessionOptions& o) { o.click_by_click = false; }},
       {"- negative granularity", [](segment::SessionOptions& o) { o.negative_granularity = false; }},
       {"- negative islands", [](segment::SessionOptions& o) { o.negative_islands = false; }},
+      {"- band beyond the part", [](segment::SessionOptions& o) { o.band_beyond_part.enabled = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

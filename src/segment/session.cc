@@ -12,6 +12,7 @@
 #include "models/onnx_graph.h"
 #include "segment/band_ledger.h"
 #include "segment/interior.h"
+#include "segment/whole_band.h"
 
 namespace isegman::segment {
 
@@ -57,7 +58,7 @@ void disable_part_growth(SessionOptions& o) {
 SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = o.click_by_click = o.negative_granularity = false;
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;
-  o.whole_islands.enabled = o.negative_islands = false;
+  o.whole_islands.enabled = o.negative_islands = o.band_beyond_part.enabled = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
   o.propagation.hidden_fallback = true;
@@ -432,29 +433,6 @@ int choose(const models::SegmentResult& r, const Image* coverage, int min_pixels
     }
   }
   return best;
-}
-
-// What the larger candidates that contain candidate `c` (>= 90 % of it, at most max_growth
-// times its area, predicted IoU >= min_score) add around it, less the negative clicks'
-// region: the view cannot tell part from whole there. Empty when nothing is added.
-Image whole_band(const models::SegmentResult& r, int c, const Mask* cut, double max_growth, double min_score) {
-  if (r.candidates.size() < 2) return {};
-  const Mask& m = r.candidates[size_t(c)];
-  const size_t a = mask_area(m);
-  Image band;
-  for (size_t o = 0; o < r.candidates.size(); ++o) {
-    const Mask& w = r.candidates[o];
-    if (int(o) == c || r.candidate_scores[o] < min_score || w.data.size() != m.data.size()) continue;
-    const size_t wa = mask_area(w);
-    if (wa <= a || double(wa) > max_growth * double(a)) continue;
-    size_t inside = 0;
-    for (size_t i = 0; i < m.data.size(); ++i) inside += m.data[i] && w.data[i];
-    if (double(inside) < 0.9 * double(a)) continue;
-    if (band.empty()) band = Image(m.width, m.height, 1);
-    for (size_t i = 0; i < m.data.size(); ++i)
-      if (w.data[i] && !m.data[i] && !(cut && cut->data[i])) band.data[i] = 1.f;
-  }
-  return band;
 }
 
 // The view's mask from candidate c of SAM's answer `result` (less the negative clicks'
@@ -854,8 +832,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
       TimeInto timed{part.band};
       // Only Gaussians wholly outside the mask: one it partly shows (a neighbour's edge
       // blended into the mask's border) keeps the band's weight against it.
-      const Image band = whole_band(*vs.sam, vs.candidate, vs.sam_negative ? &vs.sam_negative->mask() : nullptr,
-                                    o.max_whole_growth, o.min_granularity_score);
+      Image band = whole_band(*vs.sam, vs.candidate, vs.sam_negative ? &vs.sam_negative->mask() : nullptr,
+                              o.max_whole_growth, o.min_granularity_score);
+      if (o.band_beyond_part.enabled) clear_band_beyond_part(band, mask, view.depth, view.alpha, o.band_beyond_part);
       for (float v : band.data) vs.whole_pixels += v > 0.5f;
       // Its tiles over Gaussians that have had no positive vote wait (band_ledger.h).
       if (vs.whole_pixels > 0) whole = band_ledger.add_view(k, view.frame, band, shown, o.threads);

@@ -16,6 +16,7 @@
 #include "segment/propagation.h"
 #include "segment/see_through.h"
 #include "segment/views.h"
+#include "segment/whole_band.h"
 #include "segment/votes.h"
 #include "segment/negative_islands.h"
 #include "segment/whole_islands.h"
@@ -106,6 +107,9 @@ struct SessionOptions {
   // times the mask's area and of predicted IoU >= min_granularity_score count.
   bool whole_neutral = true;
   double max_whole_growth = 6, whole_min_share = 0.3;
+  // ... except what lies beyond the part's far side when the part's own gaps show such things
+  // (whole_band.h): the background around foliage, which its larger candidate takes in.
+  BandBeyondPart band_beyond_part;
   // ... and what it alone selects must touch, through selected Gaussians, what the votes
   // select on their own (whole_islands.h): a neighbour SAM merged in some views stands apart.
   IslandOptions whole_islands{true};

@@ -1,0 +1,122 @@
+#include "segment/whole_band.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "core/error.h"
+
+namespace isegman::segment {
+namespace {
+
+constexpr int kW = 80, kH = 60;
+
+Mask rect_mask(int x0, int y0, int x1, int y1) {
+  Mask m(kW, kH);
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) m.data[size_t(y) * kW + x] = 1;
+  return m;
+}
+
+// A view of a part (the mask: x 20..49, y 15..44, rendered at depth 10) inside a larger
+// candidate reaching 10 px further on every side. Left of the part the band shows a
+// sibling part (depth 10.5), right of it the background (depth 20).
+struct PartView {
+  Image mask = Image(kW, kH, 1), band = Image(kW, kH, 1), depth = Image(kW, kH, 1, 30.f), alpha = Image(kW, kH, 1, 1.f);
+  PartView() {
+    for (int y = 5; y < 55; ++y)
+      for (int x = 10; x < 60; ++x) {
+        const size_t i = size_t(y) * kW + x;
+        const bool in_part = x >= 20 && x < 50 && y >= 15 && y < 45;
+        (in_part ? mask : band).data[i] = 1.f;
+        depth.data[i] = in_part ? 10.f : x < 35 ? 10.5f : 20.f;
+      }
+  }
+  // Gaps of the part that show the background: every third column of its middle ten rows
+  // (90 of its 676 inner pixels).
+  void open_gaps() {
+    for (int y = 25; y < 35; ++y)
+      for (int x = 22; x < 48; x += 3) depth.data[size_t(y) * kW + x] = 20.f;
+  }
+  int band_pixels(int x0, int x1) const {
+    int n = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = x0; x < x1; ++x) n += band.data[size_t(y) * kW + x] > 0.5f;
+    return n;
+  }
+};
+
+TEST(WholeBand, IsWhatALargerCandidateHoldingThePartAddsLessTheCut) {
+  models::SegmentResult r;
+  r.candidates = {rect_mask(20, 15, 50, 45), rect_mask(10, 5, 60, 55), rect_mask(0, 0, 30, 60), rect_mask(0, 0, 80, 60)};
+  r.candidate_scores = {0.9f, 0.9f, 0.9f, 0.9f};
+  // The second holds the part and is 2.8x its area; the third holds a third of it; the
+  // fourth is 5.3x, above a growth of 4.
+  const Mask cut = rect_mask(55, 0, 80, 60);
+  const Image band = whole_band(r, 0, &cut, 4.0, 0.5);
+  ASSERT_FALSE(band.empty());
+  int n = 0;
+  for (float v : band.data) n += v > 0.5f;
+  EXPECT_EQ(n, 45 * 50 - 30 * 30);  // x 10..54 (the cut takes 55..59), y 5..54, less the part
+  EXPECT_GT(band.at(10, 5), 0.5f);
+  EXPECT_EQ(band.at(56, 30), 0.f);
+  EXPECT_EQ(band.at(30, 30), 0.f);
+  r.candidate_scores[1] = 0.3f;  // too unsure of itself to be a whole
+  EXPECT_TRUE(whole_band(r, 0, nullptr, 4.0, 0.5).empty());
+}
+
+TEST(WholeBand, WhatLiesBeyondAPartThatShowsItThroughItsGapsIsNoLongerOpen) {
+  PartView v;
+  v.open_gaps();
+  const int sibling = v.band_pixels(0, 35), background = v.band_pixels(35, kW);
+  const size_t cleared = clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, BandBeyondPart{});
+  std::printf("band: sibling %d -> %d px, background %d -> %d px\n", sibling, v.band_pixels(0, 35), background,
+              v.band_pixels(35, kW));
+  EXPECT_EQ(int(cleared), background);
+  EXPECT_EQ(v.band_pixels(35, kW), 0);
+  EXPECT_EQ(v.band_pixels(0, 35), sibling);  // a part beside it stays open
+}
+
+TEST(WholeBand, APartWithoutGapsLeavesItsBandOpenWhateverItsOutlineBlends) {
+  // No gaps, but the part's outline (1 px) blends the background behind it (rendered depth 20):
+  // that is no sight through the part, so the band stays as it is (a lamp's base lies
+  // deeper than its shade for a camera looking down).
+  PartView v;
+  for (int y = 15; y < 45; ++y)
+    for (int x = 20; x < 50; ++x)
+      if (x < 21 || x >= 49 || y < 16 || y >= 44) v.depth.data[size_t(y) * kW + x] = 20.f;
+  const Image before = v.band;
+  EXPECT_EQ(clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, BandBeyondPart{}), 0u);
+  EXPECT_EQ(v.band.data, before.data);
+  // Counting the outline as the part's inside would have cleared the background.
+  BandBeyondPart no_erosion;
+  no_erosion.erosion = 0;
+  EXPECT_GT(clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, no_erosion), 0u);
+}
+
+TEST(WholeBand, UnrenderedBandPixelsAndFewGapsChangeNothing) {
+  PartView v;
+  v.open_gaps();
+  for (int y = 5; y < 55; ++y)
+    for (int x = 50; x < 60; ++x) v.alpha.data[size_t(y) * kW + x] = 0.2f;  // nothing rendered there
+  clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, BandBeyondPart{});
+  EXPECT_EQ(v.band_pixels(50, 60), 50 * 10);
+  EXPECT_EQ(v.band_pixels(35, 50), 0);
+
+  PartView few;
+  few.open_gaps();
+  BandBeyondPart strict;
+  strict.min_share = 0.5;  // the gaps are 13 % of the part's inner pixels
+  const Image before = few.band;
+  EXPECT_EQ(clear_band_beyond_part(few.band, few.mask, few.depth, few.alpha, strict), 0u);
+  EXPECT_EQ(few.band.data, before.data);
+}
+
+TEST(WholeBand, ImagesOfAnotherSizeAreAnError) {
+  PartView v;
+  const Image small(kW / 2, kH, 1);
+  EXPECT_THROW(clear_band_beyond_part(v.band, small, v.depth, v.alpha, BandBeyondPart{}), Error);
+}
+
+}  // namespace
+}  // namespace isegman::segment
