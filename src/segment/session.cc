@@ -58,7 +58,7 @@ void disable_part_growth(SessionOptions& o) {
 SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = o.click_by_click = o.negative_granularity = false;
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;
-  o.whole_islands.enabled = o.negative_islands = o.band_beyond_part.enabled = false;
+  o.whole_islands.enabled = o.negative_islands = o.beyond_part.band = o.beyond_part.whole = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
   o.propagation.hidden_fallback = true;
@@ -524,6 +524,16 @@ RoundReport Session::run_round(State& next, const State& prev) {
   t0 = Clock::now();
   std::atomic<int> segmented{0};
   std::vector<std::shared_ptr<const models::SegmentResult>> results(V);
+  // The mask view k votes and is inspected with: candidate c, less the background its part
+  // shows through its gaps (whole_band.h).
+  auto take = [&](ViewState& vs, size_t k, const std::shared_ptr<const models::SegmentResult>& result, int c) {
+    take_candidate(vs, result, c);
+    vs.beyond_part_pixels = 0;
+    if (!o.beyond_part.whole) return;
+    const size_t cleared = trim_beyond_part(vs.mask, *result, c, views_[k].depth, views_[k].alpha, o.beyond_part);
+    vs.beyond_part_pixels = int(cleared);
+    vs.mask_pixels -= int(cleared);
+  };
   // Small decoder graphs scale poorly over cores: decode several views side by side, each
   // on one core, then give the calling thread back its own thread count.
   const int workers = std::max(1, o.sam_workers);
@@ -834,7 +844,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       // blended into the mask's border) keeps the band's weight against it.
       Image band = whole_band(*vs.sam, vs.candidate, vs.sam_negative ? &vs.sam_negative->mask() : nullptr,
                               o.max_whole_growth, o.min_granularity_score);
-      if (o.band_beyond_part.enabled) clear_band_beyond_part(band, mask, view.depth, view.alpha, o.band_beyond_part);
+      if (o.beyond_part.band) clear_band_beyond_part(band, mask, view.depth, view.alpha, o.beyond_part);
       for (float v : band.data) vs.whole_pixels += v > 0.5f;
       // Its tiles over Gaussians that have had no positive vote wait (band_ledger.h).
       if (vs.whole_pixels > 0) whole = band_ledger.add_view(k, view.frame, band, shown, o.threads);
@@ -920,11 +930,11 @@ RoundReport Session::run_round(State& next, const State& prev) {
         if (several) {  // the coverage decides the candidate, then the candidate's votes
           TimeInto timed{part.coverage};
           coverage = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
-          take_candidate(vs, results[k],
+          take(vs, k, results[k],
                          respect_negatives(r, inspect ? fallback_candidate(r, coverage) : choose(r, &coverage, o.min_coverage_pixels),
                                            vs, &conflict));
         } else {  // one pass over the mask's pixels gives the selection's coverage there and the mask's votes
-          take_candidate(vs, results[k], clicked_candidate(r, vs, &conflict));
+          take(vs, k, results[k], clicked_candidate(r, vs, &conflict));
           if (vs.mask_pixels > 0 && !(conflict && negative_switched)) {
             TimeInto timed{part.mask_votes};
             mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
@@ -934,7 +944,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         }
       } else {
         bool switched = false;
-        take_candidate(vs, results[k], first && forced_first >= 0 ? forced_first : clicked_candidate(r, vs, nullptr, &switched));
+        take(vs, k, results[k], first && forced_first >= 0 ? forced_first : clicked_candidate(r, vs, nullptr, &switched));
         if (first) negative_switched = switched;
       }
       if (first) first_view = k;
@@ -1035,7 +1045,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
                 (o.object_prior && surroundings(w, o.min_surroundings_share)))
               continue;
             ViewState grown = vs;
-            take_candidate(grown, results[k], int(c));
+            take(grown, k, results[k], int(c));
             consider(std::move(grown), nullptr);
           }
           // SAM prompted from the selection itself, as a view no click reached is: a click
@@ -1047,7 +1057,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
             if (prompt_from_coverage(full, prompt)) {
               ViewState grown = vs;
               const auto boxed = std::make_shared<const models::SegmentResult>(sam_->decode(views_[k].embedding, prompt));
-              take_candidate(grown, boxed, boxed->mask_index);
+              take(grown, k, boxed, boxed->mask_index);
               grown.from_selection = true;
               consider(std::move(grown), &full);
             }
@@ -1165,7 +1175,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       const size_t k = which[i];
       ViewState& vs = fresh[k];
       vs.from_selection = true;
-      take_candidate(vs, results[k], choose(*results[k], &coverages[i], o.min_coverage_pixels));
+      take(vs, k, results[k], choose(*results[k], &coverages[i], o.min_coverage_pixels));
       const Image mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
       const Agreement a = agreement(mask, coverages[i]);
       vs.overlap = a.mask_on_selection();

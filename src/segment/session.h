@@ -107,9 +107,10 @@ struct SessionOptions {
   // times the mask's area and of predicted IoU >= min_granularity_score count.
   bool whole_neutral = true;
   double max_whole_growth = 6, whole_min_share = 0.3;
-  // ... except what lies beyond the part's far side when the part's own gaps show such things
-  // (whole_band.h): the background around foliage, which its larger candidate takes in.
-  BandBeyondPart band_beyond_part;
+  // ... except what lies as deep as the background the part's own gaps show (whole_band.h):
+  // around foliage SAM's larger masks take that background in. Nor does a view that took
+  // such a larger mask vote for it.
+  BeyondPart beyond_part;
   // ... and what it alone selects must touch, through selected Gaussians, what the votes
   // select on their own (whole_islands.h): a neighbour SAM merged in some views stands apart.
   IslandOptions whole_islands{true};
@@ -195,6 +196,7 @@ struct ViewState {
   double background_offset = 0;        // where the surroundings' Gaussians lie against the rendered surface
   double background_tolerance = 0;     // ... and how near that counts as on it (relative inverse depth)
   int whole_pixels = 0;                // pixels the larger candidates add around the mask (left open: part or whole?)
+  int beyond_part_pixels = 0;          // pixels taken from the mask as the background its part shows through its gaps
   bool inspected = false;              // overlap was measured (not for the clicked view, which votes first)
   // While the round votes: P-votes of the mask (when accepted) and the depth-gated weights
   // that count neither way; released when the round ends (the accumulator keeps their sums).

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <vector>
 
 #include "core/error.h"
 
@@ -69,7 +70,7 @@ TEST(WholeBand, WhatLiesBeyondAPartThatShowsItThroughItsGapsIsNoLongerOpen) {
   PartView v;
   v.open_gaps();
   const int sibling = v.band_pixels(0, 35), background = v.band_pixels(35, kW);
-  const size_t cleared = clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, BandBeyondPart{});
+  const size_t cleared = clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, BeyondPart{});
   std::printf("band: sibling %d -> %d px, background %d -> %d px\n", sibling, v.band_pixels(0, 35), background,
               v.band_pixels(35, kW));
   EXPECT_EQ(int(cleared), background);
@@ -86,10 +87,10 @@ TEST(WholeBand, APartWithoutGapsLeavesItsBandOpenWhateverItsOutlineBlends) {
     for (int x = 20; x < 50; ++x)
       if (x < 21 || x >= 49 || y < 16 || y >= 44) v.depth.data[size_t(y) * kW + x] = 20.f;
   const Image before = v.band;
-  EXPECT_EQ(clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, BandBeyondPart{}), 0u);
+  EXPECT_EQ(clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, BeyondPart{}), 0u);
   EXPECT_EQ(v.band.data, before.data);
   // Counting the outline as the part's inside would have cleared the background.
-  BandBeyondPart no_erosion;
+  BeyondPart no_erosion;
   no_erosion.erosion = 0;
   EXPECT_GT(clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, no_erosion), 0u);
 }
@@ -99,23 +100,85 @@ TEST(WholeBand, UnrenderedBandPixelsAndFewGapsChangeNothing) {
   v.open_gaps();
   for (int y = 5; y < 55; ++y)
     for (int x = 50; x < 60; ++x) v.alpha.data[size_t(y) * kW + x] = 0.2f;  // nothing rendered there
-  clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, BandBeyondPart{});
+  clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, BeyondPart{});
   EXPECT_EQ(v.band_pixels(50, 60), 50 * 10);
   EXPECT_EQ(v.band_pixels(35, 50), 0);
 
   PartView few;
   few.open_gaps();
-  BandBeyondPart strict;
+  BeyondPart strict;
   strict.min_share = 0.5;  // the gaps are 13 % of the part's inner pixels
   const Image before = few.band;
   EXPECT_EQ(clear_band_beyond_part(few.band, few.mask, few.depth, few.alpha, strict), 0u);
   EXPECT_EQ(few.band.data, before.data);
 }
 
+TEST(WholeBand, TheBackgroundBeginsAboveThePartsOwnDeeperPieces) {
+  // The gaps show 20 px of the plant's own deeper leaves (depth 13) and 70 px of the wall
+  // (depth 20): the background begins at the wall, so a leaf as deep beside the part stays.
+  PartView v;
+  int n = 0;
+  for (int y = 25; y < 35; ++y)
+    for (int x = 22; x < 48; x += 3) v.depth.data[size_t(y) * kW + x] = n++ < 20 ? 13.f : 20.f;
+  EXPECT_EQ(seen_through_depth(v.mask, v.depth, v.alpha, BeyondPart{}), 20.f);
+  for (int y = 5; y < 15; ++y)
+    for (int x = 10; x < 20; ++x) v.depth.data[size_t(y) * kW + x] = 13.f;  // a deeper leaf beside the part
+  clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, BeyondPart{});
+  EXPECT_EQ(v.band_pixels(10, 20), 10 * 50);
+  EXPECT_EQ(v.band_pixels(35, kW), 0);
+  BeyondPart nearest;
+  nearest.background_quantile = 0;
+  EXPECT_EQ(seen_through_depth(v.mask, v.depth, v.alpha, nearest), 13.f);
+}
+
+// SAM's choice is the larger mask (the fronds with what lies under them), its part the fronds.
+struct WholeView : PartView {
+  models::SegmentResult r;
+  std::vector<uint8_t> mask;
+  WholeView() {
+    r.candidates = {rect_mask(20, 15, 50, 45), rect_mask(10, 5, 60, 55)};
+    r.candidate_scores = {0.9f, 0.95f};
+    r.mask_index = 1;
+    mask = r.candidates[1].data;
+  }
+  int mask_pixels(int x0, int x1) const {
+    int n = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = x0; x < x1; ++x) n += mask[size_t(y) * kW + x] != 0;
+    return n;
+  }
+};
+
+TEST(WholeBand, ALargerMaskLosesTheBackgroundItsPartShowsThroughItsGaps) {
+  WholeView v;
+  v.open_gaps();
+  const int sibling = v.mask_pixels(0, 20), part = 30 * 30;
+  const size_t cleared = trim_beyond_part(v.mask, v.r, 1, v.depth, v.alpha, BeyondPart{});
+  std::printf("mask: %d -> %d px (%zu cleared)\n", 2500, v.mask_pixels(0, kW), cleared);
+  EXPECT_EQ(cleared, size_t(25 * 50 - 30 * 15));  // x 35..59 outside the part
+  EXPECT_EQ(v.mask_pixels(0, 20), sibling);        // beside the part, as near: kept
+  EXPECT_EQ(v.mask_pixels(0, kW), 2500 - int(cleared));
+  int part_kept = 0;  // the part's own pixels stay, its gaps too
+  for (int y = 15; y < 45; ++y)
+    for (int x = 20; x < 50; ++x) part_kept += v.mask[size_t(y) * kW + x] != 0;
+  EXPECT_EQ(part_kept, part);
+}
+
+TEST(WholeBand, ALargerMaskWithoutASeeThroughPartStaysWhole) {
+  WholeView solid;  // the part has no gaps
+  EXPECT_EQ(trim_beyond_part(solid.mask, solid.r, 1, solid.depth, solid.alpha, BeyondPart{}), 0u);
+  WholeView tiny;  // the part is too small a share of the mask to be its part
+  tiny.open_gaps();
+  BeyondPart strict;
+  strict.min_part = 0.5;  // the part is 36 % of the mask
+  EXPECT_EQ(trim_beyond_part(tiny.mask, tiny.r, 1, tiny.depth, tiny.alpha, strict), 0u);
+  EXPECT_EQ(tiny.mask_pixels(0, kW), 2500);
+}
+
 TEST(WholeBand, ImagesOfAnotherSizeAreAnError) {
   PartView v;
   const Image small(kW / 2, kH, 1);
-  EXPECT_THROW(clear_band_beyond_part(v.band, small, v.depth, v.alpha, BandBeyondPart{}), Error);
+  EXPECT_THROW(clear_band_beyond_part(v.band, small, v.depth, v.alpha, BeyondPart{}), Error);
 }
 
 }  // namespace
