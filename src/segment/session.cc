@@ -530,7 +530,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     take_candidate(vs, result, c);
     vs.beyond_part_pixels = 0;
     if (!o.beyond_part.whole) return;
-    const size_t cleared = trim_beyond_part(vs.mask, *result, c, views_[k].depth, views_[k].alpha, o.beyond_part);
+    const size_t cleared = trim_beyond_part(vs.mask, *result, c, vs.clicks, views_[k].depth, views_[k].alpha, o.beyond_part);
     vs.beyond_part_pixels = int(cleared);
     vs.mask_pixels -= int(cleared);
   };

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/click.h"
 #include "core/image.h"
 #include "core/mask.h"
 #include "models/segmenter.h"
@@ -31,6 +32,9 @@ struct BeyondPart {
   double quantile = 0.8;    // the part's far side: this quantile of its inner pixels' rendered depth ...
   double margin = 0.1;      // ... times 1 + margin
   double min_share = 0.03;  // the part shows something beyond its far side in at least this share of its inner pixels
+  // ... through gaps: with nearer pixels of the part on both sides along the row or the
+  // column, within this share of the image's larger side
+  double max_gap = 0.03;
   // The background begins at this quantile of the depths the part shows beyond its far side
   // (above the nearest: a plant's own deeper leaves show through its gaps too).
   double background_quantile = 0.3;
@@ -38,9 +42,10 @@ struct BeyondPart {
 };
 
 // The rendered depth from which the part (`part` > 0.5) shows background through its gaps:
-// the background_quantile of its inner pixels' depths beyond its far side, where they are at
-// least min_share of its inner pixels (rendered, alpha > 0.5, `erosion` pixels in from its
-// outline); +infinity where the part shows no such thing. One channel each, the same size.
+// the background_quantile of the depths of its gap pixels (inner pixels beyond its far side
+// between nearer pixels of it), where they are at least min_share of its inner pixels
+// (rendered, alpha > 0.5, `erosion` pixels in from its outline); +infinity where the part
+// shows no such thing. One channel each, the same size.
 float seen_through_depth(const Image& part, const Image& depth, const Image& alpha, const BeyondPart& o);
 
 // Clears the band's rendered pixels (alpha > 0.5) at or beyond the depth the view's part
@@ -51,8 +56,9 @@ size_t clear_band_beyond_part(Image& band, const Image& mask, const Image& depth
 // A view's mask (`mask`: SAM's candidate `chosen`, less the negative clicks' region, 0/1 per
 // pixel) less its rendered pixels outside its part at or beyond the depth the part shows
 // through its gaps. The part is the largest other candidate of min_part..max_part of the
-// mask's area lying >= 90 % inside it. Returns the number of pixels cleared.
-size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen, const Image& depth,
-                        const Image& alpha, const BeyondPart& o);
+// mask's area lying >= 90 % inside it and holding every positive click of `clicks` (there
+// must be one): what the click is on. Returns the number of pixels cleared.
+size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
+                        const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& o);
 
 }  // namespace isegman::segment

@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
+#include "core/click.h"
 #include "core/error.h"
 
 namespace isegman::segment {
@@ -89,10 +91,24 @@ TEST(WholeBand, APartWithoutGapsLeavesItsBandOpenWhateverItsOutlineBlends) {
   const Image before = v.band;
   EXPECT_EQ(clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, BeyondPart{}), 0u);
   EXPECT_EQ(v.band.data, before.data);
-  // Counting the outline as the part's inside would have cleared the background.
-  BeyondPart no_erosion;
-  no_erosion.erosion = 0;
-  EXPECT_GT(clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, no_erosion), 0u);
+}
+
+TEST(WholeBand, ASurfaceBesideTheObjectThatThePartTakesInIsNoGap) {
+  // The part's right six columns are the wall beside the object (a post's part that takes in
+  // the wall by it): 15 % of its inner pixels lie beyond its far side, but with nearer pixels
+  // of the part on one side only. Not gaps: the band stays open.
+  PartView v;
+  for (int y = 15; y < 45; ++y)
+    for (int x = 44; x < 50; ++x) v.depth.data[size_t(y) * kW + x] = 20.f;
+  EXPECT_TRUE(std::isinf(seen_through_depth(v.mask, v.depth, v.alpha, BeyondPart{})));
+  const Image before = v.band;
+  EXPECT_EQ(clear_band_beyond_part(v.band, v.mask, v.depth, v.alpha, BeyondPart{}), 0u);
+  EXPECT_EQ(v.band.data, before.data);
+  // The same pixels as gaps (a column of the part's own nearer pixels right of them) are.
+  for (int y = 15; y < 45; ++y) v.depth.data[size_t(y) * kW + 46] = 10.f;
+  BeyondPart wide;
+  wide.max_gap = 0.05;  // 4 px here
+  EXPECT_EQ(seen_through_depth(v.mask, v.depth, v.alpha, wide), 20.f);
 }
 
 TEST(WholeBand, UnrenderedBandPixelsAndFewGapsChangeNothing) {
@@ -135,6 +151,7 @@ TEST(WholeBand, TheBackgroundBeginsAboveThePartsOwnDeeperPieces) {
 struct WholeView : PartView {
   models::SegmentResult r;
   std::vector<uint8_t> mask;
+  std::vector<Click> clicks{pixel_centre_click(30, 30, 1)};  // on the part
   WholeView() {
     r.candidates = {rect_mask(20, 15, 50, 45), rect_mask(10, 5, 60, 55)};
     r.candidate_scores = {0.9f, 0.95f};
@@ -153,7 +170,7 @@ TEST(WholeBand, ALargerMaskLosesTheBackgroundItsPartShowsThroughItsGaps) {
   WholeView v;
   v.open_gaps();
   const int sibling = v.mask_pixels(0, 20), part = 30 * 30;
-  const size_t cleared = trim_beyond_part(v.mask, v.r, 1, v.depth, v.alpha, BeyondPart{});
+  const size_t cleared = trim_beyond_part(v.mask, v.r, 1, v.clicks, v.depth, v.alpha, BeyondPart{});
   std::printf("mask: %d -> %d px (%zu cleared)\n", 2500, v.mask_pixels(0, kW), cleared);
   EXPECT_EQ(cleared, size_t(25 * 50 - 30 * 15));  // x 35..59 outside the part
   EXPECT_EQ(v.mask_pixels(0, 20), sibling);        // beside the part, as near: kept
@@ -166,13 +183,30 @@ TEST(WholeBand, ALargerMaskLosesTheBackgroundItsPartShowsThroughItsGaps) {
 
 TEST(WholeBand, ALargerMaskWithoutASeeThroughPartStaysWhole) {
   WholeView solid;  // the part has no gaps
-  EXPECT_EQ(trim_beyond_part(solid.mask, solid.r, 1, solid.depth, solid.alpha, BeyondPart{}), 0u);
+  EXPECT_EQ(trim_beyond_part(solid.mask, solid.r, 1, solid.clicks, solid.depth, solid.alpha, BeyondPart{}), 0u);
   WholeView tiny;  // the part is too small a share of the mask to be its part
   tiny.open_gaps();
   BeyondPart strict;
   strict.min_part = 0.5;  // the part is 36 % of the mask
-  EXPECT_EQ(trim_beyond_part(tiny.mask, tiny.r, 1, tiny.depth, tiny.alpha, strict), 0u);
+  EXPECT_EQ(trim_beyond_part(tiny.mask, tiny.r, 1, tiny.clicks, tiny.depth, tiny.alpha, strict), 0u);
   EXPECT_EQ(tiny.mask_pixels(0, kW), 2500);
+}
+
+TEST(WholeBand, ALargerMaskIsTrimmedOnlyByThePartTheClickIsOn) {
+  // Clicked beside the part (on the sibling at the left), or not clicked (a view prompted
+  // from the selection): the part is not what the click picked, its gaps say nothing.
+  for (const std::vector<Click>& clicks :
+       {std::vector<Click>{pixel_centre_click(12, 30, 1)}, std::vector<Click>{},
+        std::vector<Click>{pixel_centre_click(30, 30, 1), pixel_centre_click(12, 30, 1)},
+        std::vector<Click>{pixel_centre_click(12, 30, 0)}}) {
+    WholeView v;
+    v.open_gaps();
+    EXPECT_EQ(trim_beyond_part(v.mask, v.r, 1, clicks, v.depth, v.alpha, BeyondPart{}), 0u);
+  }
+  WholeView v;  // a negative click elsewhere does not matter
+  v.open_gaps();
+  v.clicks.push_back(pixel_centre_click(12, 30, 0));
+  EXPECT_EQ(trim_beyond_part(v.mask, v.r, 1, v.clicks, v.depth, v.alpha, BeyondPart{}), 800u);
 }
 
 TEST(WholeBand, ImagesOfAnotherSizeAreAnError) {
