@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <string>
 #include <limits>
 
 #include "core/error.h"
@@ -13,9 +15,10 @@ size_t area(const std::vector<uint8_t>& m) {
   return size_t(std::count_if(m.begin(), m.end(), [](uint8_t v) { return v != 0; }));
 }
 
-void check_sizes(const Image& a, const Image& b, const Image& c, const char* what) {
-  for (const Image* im : {&b, &c})
-    if (im->width != a.width || im->height != a.height || im->channels != 1 || a.channels != 1)
+void check_sizes(std::initializer_list<const Image*> images, const char* what) {
+  const Image& first = **images.begin();
+  for (const Image* im : images)
+    if (im->width != first.width || im->height != first.height || im->channels != 1)
       throw Error(std::string(what) + ": masks, depth and alpha must be one channel at one size");
 }
 
@@ -42,7 +45,7 @@ Image whole_band(const models::SegmentResult& r, int c, const Mask* cut, double 
 }
 
 float seen_through_depth(const Image& part, const Image& depth, const Image& alpha, const BeyondPart& o) {
-  check_sizes(part, depth, alpha, "seen_through_depth");
+  check_sizes({&part, &depth, &alpha}, "seen_through_depth");
   const int W = part.width, H = part.height;
   constexpr float kNone = std::numeric_limits<float>::infinity();
   auto in_part = [&](size_t i) { return part.data[i] > 0.5f && alpha.data[i] > 0.5f; };
@@ -107,8 +110,7 @@ float seen_through_depth(const Image& part, const Image& depth, const Image& alp
 
 size_t clear_band_beyond_part(Image& band, const Image& mask, const Image& depth, const Image& alpha, const BeyondPart& o) {
   if (band.empty()) return 0;
-  check_sizes(band, mask, depth, "clear_band_beyond_part");
-  check_sizes(band, alpha, depth, "clear_band_beyond_part");
+  check_sizes({&band, &mask, &depth, &alpha}, "clear_band_beyond_part");
   const float from = seen_through_depth(mask, depth, alpha, o);
   size_t cleared = 0;
   for (size_t i = 0; i < band.data.size(); ++i)
@@ -122,7 +124,9 @@ size_t clear_band_beyond_part(Image& band, const Image& mask, const Image& depth
 size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
                         const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& o) {
   const size_t a = area(mask);
-  if (a == 0 || mask.size() != depth.data.size()) return 0;
+  if (a == 0) return 0;
+  if (mask.size() != depth.data.size() || mask.size() != alpha.data.size())
+    throw Error("trim_beyond_part: the mask, depth and alpha must be of one size");
   std::vector<size_t> clicked;  // the positive clicks' pixels
   for (const Click& k : clicks) {
     if (k.label != 1) continue;

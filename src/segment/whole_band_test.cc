@@ -213,6 +213,9 @@ TEST(WholeBand, ImagesOfAnotherSizeAreAnError) {
   PartView v;
   const Image small(kW / 2, kH, 1);
   EXPECT_THROW(clear_band_beyond_part(v.band, small, v.depth, v.alpha, BeyondPart{}), Error);
+  WholeView w;
+  EXPECT_THROW(trim_beyond_part(w.mask, w.r, 1, w.clicks, w.depth, small, BeyondPart{}), Error);
+  EXPECT_THROW(seen_through_depth(small, w.depth, w.alpha, BeyondPart{}), Error);
 }
 
 }  // namespace
