@@ -21,6 +21,14 @@ struct Mask {
   bool at(int x, int y) const { return data[size_t(y) * width + x] != 0; }
 };
 
+// Pixels on (non-zero) in mask bytes.
+inline size_t mask_area(const std::vector<uint8_t>& bytes) {
+  size_t n = 0;
+  for (uint8_t v : bytes) n += v != 0;
+  return n;
+}
+inline size_t mask_area(const Mask& m) { return mask_area(m.data); }
+
 // Bytes (non-zero: on) of a w x h mask as a one-channel image of 0 and 1, for the
 // rasteriser's masked votes and PNGs.
 inline Image mask_image(const std::vector<uint8_t>& bytes, int w, int h) {

@@ -86,12 +86,6 @@ struct TimeInto {
   ~TimeInto() { into += ms_since(start); }
 };
 
-size_t mask_area(const Mask& m) {
-  size_t n = 0;
-  for (uint8_t v : m.data) n += v != 0;
-  return n;
-}
-
 // Image borders (0-4) a mask reaches.
 int borders_reached(const Mask& m) {
   const int w = m.width, h = m.height;

@@ -11,10 +11,6 @@
 namespace isegman::segment {
 namespace {
 
-size_t area(const std::vector<uint8_t>& m) {
-  return size_t(std::count_if(m.begin(), m.end(), [](uint8_t v) { return v != 0; }));
-}
-
 void check_sizes(std::initializer_list<const Image*> images, const char* what) {
   const Image& first = **images.begin();
   for (const Image* im : images)
@@ -27,12 +23,12 @@ void check_sizes(std::initializer_list<const Image*> images, const char* what) {
 Image whole_band(const models::SegmentResult& r, int c, const Mask* cut, double max_growth, double min_score) {
   if (r.candidates.size() < 2) return {};
   const Mask& m = r.candidates[size_t(c)];
-  const size_t a = area(m.data);
+  const size_t a = mask_area(m);
   Image band;
   for (size_t o = 0; o < r.candidates.size(); ++o) {
     const Mask& w = r.candidates[o];
     if (int(o) == c || r.candidate_scores[o] < min_score || w.data.size() != m.data.size()) continue;
-    const size_t wa = area(w.data);
+    const size_t wa = mask_area(w);
     if (wa <= a || double(wa) > max_growth * double(a)) continue;
     size_t inside = 0;
     for (size_t i = 0; i < m.data.size(); ++i) inside += m.data[i] && w.data[i];
@@ -123,7 +119,7 @@ size_t clear_band_beyond_part(Image& band, const Image& mask, const Image& depth
 
 size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
                         const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& o) {
-  const size_t a = area(mask);
+  const size_t a = mask_area(mask);
   if (a == 0) return 0;
   if (mask.size() != depth.data.size() || mask.size() != alpha.data.size())
     throw Error("trim_beyond_part: the mask, depth and alpha must be of one size");
