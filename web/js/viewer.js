@@ -218,6 +218,9 @@ export class Viewer {
         if (this.usesGl()) continue;  // switched to the WebGL view meanwhile
         const url = URL.createObjectURL(blob);
         await new Promise((resolve, reject) => { this.img.onload = resolve; this.img.onerror = reject; this.img.src = url; });
+        // A double click may have switched to the WebGL view while the image decoded: the
+        // training view's render must not take over the free view's key, caption and marks.
+        if (this.usesGl()) { URL.revokeObjectURL(url); continue; }
         if (this.objectUrl) URL.revokeObjectURL(this.objectUrl);
         this.objectUrl = url;
         this.shown = r;
