@@ -117,6 +117,57 @@ size_t clear_band_beyond_part(Image& band, const Image& mask, const Image& depth
   return cleared;
 }
 
+size_t clear_band_in_front(Image& band, const Image& mask, const Image& depth, const Image& alpha, const BandInFront& o) {
+  if (band.empty() || !o.enabled) return 0;
+  check_sizes({&band, &mask, &depth, &alpha}, "clear_band_in_front");
+  const int w = band.width, h = band.height;
+  auto in_band = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && band.at(x, y) > 0.5f; };
+  auto in_mask = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && mask.at(x, y) > 0.5f; };
+  auto rendered = [&](int x, int y) { return alpha.at(x, y) > 0.5f && depth.at(x, y) > 0; };
+  std::vector<int> region(size_t(w) * size_t(h), -1);
+  std::vector<int> pixels;
+  size_t cleared = 0;
+  const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
+  for (int y0 = 0; y0 < h; ++y0)
+    for (int x0 = 0; x0 < w; ++x0) {
+      if (!in_band(x0, y0) || region[size_t(y0) * size_t(w) + size_t(x0)] >= 0) continue;
+      // The region, flooded over 4-neighbours.
+      const int id = y0 * w + x0;
+      pixels.assign(1, id);
+      region[size_t(id)] = id;
+      for (size_t head = 0; head < pixels.size(); ++head) {
+        const int x = pixels[head] % w, y = pixels[head] / w;
+        for (int k = 0; k < 4; ++k) {
+          const int nx = x + dx[k], ny = y + dy[k];
+          if (!in_band(nx, ny) || region[size_t(ny) * size_t(w) + size_t(nx)] >= 0) continue;
+          region[size_t(ny) * size_t(w) + size_t(nx)] = id;
+          pixels.push_back(ny * w + nx);
+        }
+      }
+      // Where it meets the part: its depth a few pixels into it against the part's a few
+      // pixels into the part (the meeting pixels themselves blend both sides).
+      int meeting = 0, joined = 0, nearer = 0;
+      for (int p : pixels) {
+        const int x = p % w, y = p / w;
+        for (int k = 0; k < 4; ++k) {
+          if (!in_mask(x + dx[k], y + dy[k])) continue;
+          const int bx = x - o.step * dx[k], by = y - o.step * dy[k];
+          const int mx = x + (1 + o.step) * dx[k], my = y + (1 + o.step) * dy[k];
+          if (!in_band(bx, by) || !in_mask(mx, my) || !rendered(bx, by) || !rendered(mx, my)) continue;
+          const double db = depth.at(bx, by), dm = depth.at(mx, my);
+          ++meeting;
+          if (std::abs(db - dm) <= o.tolerance * dm) ++joined;
+          else if (db < dm) ++nearer;
+        }
+      }
+      if (meeting < o.min_meeting || double(joined) > o.max_joined * meeting || double(nearer) < o.min_nearer * meeting)
+        continue;
+      for (int p : pixels) band.data[size_t(p)] = 0.f;
+      cleared += pixels.size();
+    }
+  return cleared;
+}
+
 size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
                         const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& o) {
   const size_t a = mask_area(mask);

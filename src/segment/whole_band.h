@@ -53,6 +53,27 @@ float seen_through_depth(const Image& part, const Image& depth, const Image& alp
 // number of pixels cleared.
 size_t clear_band_beyond_part(Image& band, const Image& mask, const Image& depth, const Image& alpha, const BeyondPart& o);
 
+// A neighbour standing in front of the part that SAM's larger candidate merges with it (a
+// playpen before the climbing frame clicked behind it) meets the part, in the image, only
+// across a step towards the camera. A whole's other parts join the part where they meet it
+// (a chair's seat under its back, a lamp's stem under its shade), at its depth.
+struct BandInFront {
+  bool enabled = true;
+  int step = 2;              // depths compared this many pixels either side of where band and part meet
+  double tolerance = 0.05;   // relative depth within which the two sides join
+  double max_joined = 0.1;   // a band region joins the part where more than this share of its meeting pixels do
+  double min_nearer = 0.5;   // ... and lies in front of it where at least this share are nearer
+  int min_meeting = 8;       // meeting pixels needed to judge a region
+};
+
+// Clears from the band every 4-connected region of it that meets the part (`mask` > 0.5)
+// only across such a step: where it meets the part, its depth `step` pixels into it is
+// nearer than the part's `step` pixels into the part by more than `tolerance` at at least
+// min_nearer of the meeting pixels, and within tolerance at at most max_joined of them.
+// Regions that do not meet the part, or meet it at fewer than min_meeting pixels with depth
+// on both sides, stay. Returns the number of pixels cleared.
+size_t clear_band_in_front(Image& band, const Image& mask, const Image& depth, const Image& alpha, const BandInFront& o);
+
 // A view's mask (`mask`: SAM's candidate `chosen`, less the negative clicks' region, 0/1 per
 // pixel) less its rendered pixels outside its part at or beyond the depth the part shows
 // through its gaps. The part is the largest other candidate of min_part..max_part of the
