@@ -21,11 +21,22 @@ Mask rect_mask(int x0, int y0, int x1, int y1) {
   return m;
 }
 
+// A view's part (the mask), the band around it, its rendered depth (30 where nothing is
+// painted below) and alpha.
+struct BandImages {
+  Image mask = Image(kW, kH, 1), band = Image(kW, kH, 1), depth = Image(kW, kH, 1, 30.f), alpha = Image(kW, kH, 1, 1.f);
+  int band_pixels(int x0, int x1) const {  // in columns x0..x1-1
+    int n = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = x0; x < x1; ++x) n += band.data[size_t(y) * kW + x] > 0.5f;
+    return n;
+  }
+};
+
 // A view of a part (the mask: x 20..49, y 15..44, rendered at depth 10) inside a larger
 // candidate reaching 10 px further on every side. Left of the part the band shows a
 // sibling part (depth 10.5), right of it the background (depth 20).
-struct PartView {
-  Image mask = Image(kW, kH, 1), band = Image(kW, kH, 1), depth = Image(kW, kH, 1, 30.f), alpha = Image(kW, kH, 1, 1.f);
+struct PartView : BandImages {
   PartView() {
     for (int y = 5; y < 55; ++y)
       for (int x = 10; x < 60; ++x) {
@@ -40,12 +51,6 @@ struct PartView {
   void open_gaps() {
     for (int y = 25; y < 35; ++y)
       for (int x = 22; x < 48; x += 3) depth.data[size_t(y) * kW + x] = 20.f;
-  }
-  int band_pixels(int x0, int x1) const {
-    int n = 0;
-    for (int y = 0; y < kH; ++y)
-      for (int x = x0; x < x1; ++x) n += band.data[size_t(y) * kW + x] > 0.5f;
-    return n;
   }
 };
 
@@ -212,8 +217,7 @@ TEST(WholeBand, ALargerMaskIsTrimmedOnlyByThePartTheClickIsOn) {
 // A part (x 20..49, y 15..44, depth 10) whose larger candidate adds two regions apart from
 // each other: left of it a sibling part that joins it at its depth (10.3), right of it a
 // neighbour standing in front of it (depth 8.5, 15 % nearer).
-struct FrontView {
-  Image mask = Image(kW, kH, 1), band = Image(kW, kH, 1), depth = Image(kW, kH, 1, 30.f), alpha = Image(kW, kH, 1, 1.f);
+struct FrontView : BandImages {
   FrontView() {
     for (int y = 15; y < 45; ++y)
       for (int x = 8; x < 66; ++x) {
@@ -222,12 +226,6 @@ struct FrontView {
         (in_part ? mask : band).data[i] = 1.f;
         depth.data[i] = in_part ? 10.f : x < 20 ? 10.3f : 8.5f;
       }
-  }
-  int band_pixels(int x0, int x1) const {
-    int n = 0;
-    for (int y = 0; y < kH; ++y)
-      for (int x = x0; x < x1; ++x) n += band.data[size_t(y) * kW + x] > 0.5f;
-    return n;
   }
 };
 
