@@ -200,6 +200,7 @@ struct ViewState {
   double background_tolerance = 0;     // ... and how near that counts as on it (relative inverse depth)
   int whole_pixels = 0;                // pixels the larger candidates add around the mask (left open: part or whole?)
   int in_front_pixels = 0;             // band pixels not left open: a neighbour in front of the part
+  int mask_in_front_pixels = 0;        // pixels taken from the mask: a neighbour in front of its part
   int beyond_part_pixels = 0;          // pixels taken from the mask as the background its part shows through its gaps
   bool inspected = false;              // overlap was measured (not for the clicked view, which votes first)
   // While the round votes: P-votes of the mask (when accepted) and the depth-gated weights

@@ -168,20 +168,21 @@ size_t clear_band_in_front(Image& band, const Image& mask, const Image& depth, c
   return cleared;
 }
 
-size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
-                        const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& o) {
-  const size_t a = mask_area(mask);
-  if (a == 0) return 0;
-  if (mask.size() != depth.data.size() || mask.size() != alpha.data.size())
-    throw Error("trim_beyond_part: the mask, depth and alpha must be of one size");
+namespace {
+
+// The part of a view's larger mask that its clicks are on: SAM's largest other candidate of
+// min_part..max_part of the mask's area (`area`), >= 90 % inside it, holding every positive
+// click. Null when there is none, or no positive click.
+const Mask* clicked_part(const std::vector<uint8_t>& mask, size_t area, const models::SegmentResult& r, int chosen,
+                         const std::vector<Click>& clicks, int width, int height, const BeyondPart& o) {
   std::vector<size_t> clicked;  // the positive clicks' pixels
   for (const Click& k : clicks) {
     if (k.label != 1) continue;
     const int x = int(std::floor(k.x)), y = int(std::floor(k.y));
-    if (x < 0 || y < 0 || x >= depth.width || y >= depth.height) return 0;
-    clicked.push_back(size_t(y) * size_t(depth.width) + size_t(x));
+    if (x < 0 || y < 0 || x >= width || y >= height) return nullptr;
+    clicked.push_back(size_t(y) * size_t(width) + size_t(x));
   }
-  if (clicked.empty()) return 0;
+  if (clicked.empty()) return nullptr;
   const Mask* part = nullptr;
   size_t part_area = 0;
   for (size_t c = 0; c < r.candidates.size(); ++c) {
@@ -194,12 +195,24 @@ size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult&
       pa += p.data[i] != 0;
       inside += p.data[i] && mask[i];
     }
-    if (double(pa) < o.min_part * double(a) || double(pa) > o.max_part * double(a) || double(inside) < 0.9 * double(pa) ||
-        pa <= part_area)
+    if (double(pa) < o.min_part * double(area) || double(pa) > o.max_part * double(area) ||
+        double(inside) < 0.9 * double(pa) || pa <= part_area)
       continue;
     part = &p;
     part_area = pa;
   }
+  return part;
+}
+
+}  // namespace
+
+size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
+                        const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& o) {
+  const size_t a = mask_area(mask);
+  if (a == 0) return 0;
+  if (mask.size() != depth.data.size() || mask.size() != alpha.data.size())
+    throw Error("trim_beyond_part: the mask, depth and alpha must be of one size");
+  const Mask* part = clicked_part(mask, a, r, chosen, clicks, depth.width, depth.height, o);
   if (!part) return 0;
   const float from = seen_through_depth(to_image(*part), depth, alpha, o);
   size_t cleared = 0;
@@ -208,6 +221,27 @@ size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult&
       mask[i] = 0;
       ++cleared;
     }
+  return cleared;
+}
+
+size_t trim_in_front(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
+                     const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& parts,
+                     const BandInFront& o) {
+  const size_t a = mask_area(mask);
+  if (a == 0 || !o.whole) return 0;
+  if (mask.size() != depth.data.size() || mask.size() != alpha.data.size())
+    throw Error("trim_in_front: the mask, depth and alpha must be of one size");
+  const Mask* part = clicked_part(mask, a, r, chosen, clicks, depth.width, depth.height, parts);
+  if (!part) return 0;
+  // What the mask adds around its part is judged as a band around it.
+  Image band(depth.width, depth.height, 1);
+  for (size_t i = 0; i < mask.size(); ++i) band.data[i] = mask[i] && !part->data[i] ? 1.f : 0.f;
+  const Image before = band;
+  BandInFront judge = o;
+  judge.enabled = true;
+  const size_t cleared = clear_band_in_front(band, to_image(*part), depth, alpha, judge);
+  for (size_t i = 0; i < mask.size() && cleared; ++i)
+    if (before.data[i] > 0.5f && band.data[i] <= 0.5f) mask[i] = 0;
   return cleared;
 }
 

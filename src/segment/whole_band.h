@@ -58,7 +58,8 @@ size_t clear_band_beyond_part(Image& band, const Image& mask, const Image& depth
 // across a step towards the camera. A whole's other parts join the part where they meet it
 // (a chair's seat under its back, a lamp's stem under its shade), at its depth.
 struct BandInFront {
-  bool enabled = true;
+  bool enabled = true;  // a view that took the part: such a band region is not left open
+  bool whole = true;    // a view that took the larger mask: such a region of it does not vote
   int step = 2;              // depths compared this many pixels either side of where band and part meet
   double tolerance = 0.05;   // relative depth within which the two sides join
   double max_joined = 0.1;   // a band region joins the part where more than this share of its meeting pixels do
@@ -81,5 +82,13 @@ size_t clear_band_in_front(Image& band, const Image& mask, const Image& depth, c
 // must be one): what the click is on. Returns the number of pixels cleared.
 size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
                         const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& o);
+
+// A view's mask (as for trim_beyond_part: SAM's candidate `chosen`, its part found the same
+// way with `parts`' bounds) less the regions of it outside its part that meet the part only
+// across a step towards the camera (clear_band_in_front with `o`). Returns the number of
+// pixels cleared.
+size_t trim_in_front(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
+                     const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& parts,
+                     const BandInFront& o);
 
 }  // namespace isegman::segment

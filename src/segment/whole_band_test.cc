@@ -267,6 +267,27 @@ TEST(WholeBand, WhatLiesBehindThePartOrBarelyMeetsItIsNotJudgedInFront) {
   EXPECT_EQ(clear_band_in_front(few.band, few.mask, few.depth, few.alpha, BandInFront{}), 0u);
 }
 
+TEST(WholeBand, ALargerMaskLosesTheNeighbourInFrontOfItsPart) {
+  // The FrontView's part and both band regions as SAM's larger candidate, which the view took.
+  FrontView v;
+  models::SegmentResult r;
+  r.candidates = {rect_mask(20, 15, 50, 45), rect_mask(8, 15, 66, 45)};
+  r.candidate_scores = {0.9f, 0.95f};
+  r.mask_index = 1;
+  std::vector<uint8_t> mask = r.candidates[1].data;
+  const std::vector<Click> on_part{pixel_centre_click(30, 30, 1)};
+  EXPECT_EQ(trim_in_front(mask, r, 1, on_part, v.depth, v.alpha, BeyondPart{}, BandInFront{}), 16u * 30u);
+  EXPECT_EQ(mask_area(mask), size_t(12 * 30 + 30 * 30));  // the part and its sibling
+  // Without a click on a part, or switched off, the mask stays whole.
+  mask = r.candidates[1].data;
+  const std::vector<Click> on_neighbour{pixel_centre_click(60, 30, 1)};
+  EXPECT_EQ(trim_in_front(mask, r, 1, on_neighbour, v.depth, v.alpha, BeyondPart{}, BandInFront{}), 0u);
+  BandInFront off;
+  off.whole = false;
+  EXPECT_EQ(trim_in_front(mask, r, 1, on_part, v.depth, v.alpha, BeyondPart{}, off), 0u);
+  EXPECT_EQ(mask_area(mask), size_t(58 * 30));
+}
+
 TEST(WholeBand, ImagesOfAnotherSizeAreAnError) {
   PartView v;
   const Image small(kW / 2, kH, 1);
@@ -274,6 +295,7 @@ TEST(WholeBand, ImagesOfAnotherSizeAreAnError) {
   EXPECT_THROW(clear_band_in_front(v.band, small, v.depth, v.alpha, BandInFront{}), Error);
   WholeView w;
   EXPECT_THROW(trim_beyond_part(w.mask, w.r, 1, w.clicks, w.depth, small, BeyondPart{}), Error);
+  EXPECT_THROW(trim_in_front(w.mask, w.r, 1, w.clicks, w.depth, small, BeyondPart{}, BandInFront{}), Error);
   EXPECT_THROW(seen_through_depth(small, w.depth, w.alpha, BeyondPart{}), Error);
 }
 
