@@ -114,7 +114,7 @@ int run_eval_ablation(const Args& args) {
       {"- negative islands", [](segment::SessionOptions& o) { o.negative_islands = false; }},
       {"- band beyond the part", [](segment::SessionOptions& o) { o.beyond_part.band = false; }},
       {"- mask beyond the part", [](segment::SessionOptions& o) { o.beyond_part.whole = false; }},
-      {"- band in front of the part", [](segment::SessionOptions& o) { o.band_in_front.enabled = false; }},
+      {"- band in front of the part", [](segment::SessionOptions& o) { o.band_in_front.band = false; }},
       {"- mask in front of the part", [](segment::SessionOptions& o) { o.band_in_front.whole = false; }},
   };
   const std::string which = args.get("configs", "");

@@ -1469,7 +1469,8 @@ void ellipsoid(SceneBuilder& b, const Vec3& c, const Vec3& r, int n, double size
 }
 
 // An axis-aligned cuboid of half sizes h around c, its five faces but the bottom, sampled
-// by area, coloured by colour(local point, normal).
+// by area, coloured by colour(local point, normal). (`box` above samples its faces evenly
+// and stays as it is: the older scenes are built from its random draws.)
 template <class Colour>
 void cuboid(SceneBuilder& b, const Vec3& c, const Vec3& h, int n, double size, Colour colour, int label) {
   const double ax = h.y * h.z, ay = h.x * h.z, az = h.x * h.y, total = 2 * ax + 2 * ay + az;

@@ -127,7 +127,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   if (args.has("rendered-surface")) s.session.background_options.spread_scale = 0;
   s.session.whole_islands.enabled = !args.has("keep-whole-islands");
   s.session.beyond_part.band = s.session.beyond_part.whole = !args.has("keep-beyond-part");
-  s.session.band_in_front.enabled = s.session.band_in_front.whole = !args.has("keep-band-in-front");
+  s.session.band_in_front.band = s.session.band_in_front.whole = !args.has("keep-band-in-front");
   s.session.negative_islands = !args.has("no-negative-islands");
   s.session.see_through = !args.has("no-see-through");
   s.session.agreement_inspection = !args.has("overlap-inspection");

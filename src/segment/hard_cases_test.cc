@@ -619,7 +619,7 @@ TEST(HardCases, AClimbingFrameIsSelectedWithoutThePlaypenInFrontOfIt) {
   // their bands nor in the larger masks of the views that took both.
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   SessionOptions keep;
-  keep.band_in_front.enabled = keep.band_in_front.whole = false;
+  keep.band_in_front.band = keep.band_in_front.whole = false;
   const auto [ours, without] = with_and_without("playroom/climbing_triangle", keep, "what is in front kept");
   EXPECT_GT(ours.iou, 0.75);
   EXPECT_GT(ours.iou, without.iou + 0.3);

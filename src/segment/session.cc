@@ -58,7 +58,7 @@ void disable_part_growth(SessionOptions& o) {
 SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = o.click_by_click = o.negative_granularity = false;
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;
-  o.whole_islands.enabled = o.negative_islands = o.beyond_part.band = o.beyond_part.whole = o.band_in_front.enabled = o.band_in_front.whole = false;
+  o.whole_islands.enabled = o.negative_islands = o.beyond_part.band = o.beyond_part.whole = o.band_in_front.band = o.band_in_front.whole = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
   o.propagation.hidden_fallback = true;

@@ -118,29 +118,29 @@ size_t clear_band_beyond_part(Image& band, const Image& mask, const Image& depth
 }
 
 size_t clear_band_in_front(Image& band, const Image& mask, const Image& depth, const Image& alpha, const BandInFront& o) {
-  if (band.empty() || !o.enabled) return 0;
+  if (band.empty() || !o.band) return 0;
   check_sizes({&band, &mask, &depth, &alpha}, "clear_band_in_front");
   const int w = band.width, h = band.height;
   auto in_band = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && band.at(x, y) > 0.5f; };
   auto in_mask = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && mask.at(x, y) > 0.5f; };
   auto rendered = [&](int x, int y) { return alpha.at(x, y) > 0.5f && depth.at(x, y) > 0; };
-  std::vector<int> region(size_t(w) * size_t(h), -1);
+  std::vector<uint8_t> seen(size_t(w) * size_t(h), 0);
   std::vector<int> pixels;
   size_t cleared = 0;
   const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
   for (int y0 = 0; y0 < h; ++y0)
     for (int x0 = 0; x0 < w; ++x0) {
-      if (!in_band(x0, y0) || region[size_t(y0) * size_t(w) + size_t(x0)] >= 0) continue;
+      if (!in_band(x0, y0) || seen[size_t(y0) * size_t(w) + size_t(x0)]) continue;
       // The region, flooded over 4-neighbours.
       const int id = y0 * w + x0;
       pixels.assign(1, id);
-      region[size_t(id)] = id;
+      seen[size_t(id)] = 1;
       for (size_t head = 0; head < pixels.size(); ++head) {
         const int x = pixels[head] % w, y = pixels[head] / w;
         for (int k = 0; k < 4; ++k) {
           const int nx = x + dx[k], ny = y + dy[k];
-          if (!in_band(nx, ny) || region[size_t(ny) * size_t(w) + size_t(nx)] >= 0) continue;
-          region[size_t(ny) * size_t(w) + size_t(nx)] = id;
+          if (!in_band(nx, ny) || seen[size_t(ny) * size_t(w) + size_t(nx)]) continue;
+          seen[size_t(ny) * size_t(w) + size_t(nx)] = 1;
           pixels.push_back(ny * w + nx);
         }
       }
@@ -238,7 +238,7 @@ size_t trim_in_front(std::vector<uint8_t>& mask, const models::SegmentResult& r,
   for (size_t i = 0; i < mask.size(); ++i) band.data[i] = mask[i] && !part->data[i] ? 1.f : 0.f;
   const Image before = band;
   BandInFront judge = o;
-  judge.enabled = true;
+  judge.band = true;
   const size_t cleared = clear_band_in_front(band, to_image(*part), depth, alpha, judge);
   for (size_t i = 0; i < mask.size() && cleared; ++i)
     if (before.data[i] > 0.5f && band.data[i] <= 0.5f) mask[i] = 0;

@@ -58,7 +58,7 @@ size_t clear_band_beyond_part(Image& band, const Image& mask, const Image& depth
 // across a step towards the camera. A whole's other parts join the part where they meet it
 // (a chair's seat under its back, a lamp's stem under its shade), at its depth.
 struct BandInFront {
-  bool enabled = true;  // a view that took the part: such a band region is not left open
+  bool band = true;     // a view that took the part: such a band region is not left open
   bool whole = true;    // a view that took the larger mask: such a region of it does not vote
   int step = 2;              // depths compared this many pixels either side of where band and part meet
   double tolerance = 0.05;   // relative depth within which the two sides join

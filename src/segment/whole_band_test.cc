@@ -237,7 +237,7 @@ TEST(WholeBand, ANeighbourInFrontOfThePartIsNoLongerOpenASiblingPartIs) {
   // Switched off, nothing changes.
   FrontView off;
   BandInFront o;
-  o.enabled = false;
+  o.band = false;
   EXPECT_EQ(clear_band_in_front(off.band, off.mask, off.depth, off.alpha, o), 0u);
   EXPECT_EQ(off.band_pixels(50, kW), 16 * 30);
 }
