@@ -114,8 +114,6 @@ int run_eval_ablation(const Args& args) {
       {"- negative islands", [](segment::SessionOptions& o) { o.negative_islands = false; }},
       {"- band beyond the part", [](segment::SessionOptions& o) { o.beyond_part.band = false; }},
       {"- mask beyond the part", [](segment::SessionOptions& o) { o.beyond_part.whole = false; }},
-      {"- band in front of the part", [](segment::SessionOptions& o) { o.band_in_front.band = false; }},
-      {"- mask in front of the part", [](segment::SessionOptions& o) { o.band_in_front.whole = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)
@@ -212,17 +210,17 @@ int run_eval_ablation(const Args& args) {
     namespace fs = std::filesystem;
     const fs::path dir = fs::path(overlays) / name;
     fs::create_directories(dir);
-    std::string table = "view status candidate sam_score mask_px overlap selection_inside iou prompted depth_layers background surface_offset surface_tolerance whole_px beyond_part_px in_front_px mask_in_front_px\n";
+    std::string table = "view status candidate sam_score mask_px overlap selection_inside iou prompted depth_layers background surface_offset surface_tolerance whole_px beyond_part_px\n";
     for (size_t k = 0; k < session.views().size(); ++k) {
       const segment::ViewState& v = session.view_states()[k];
       write_png((dir / (session.views()[k].name + ".png")).string(),
                 segment::make_overlay(session.views()[k].rgb_image(), v, session.selection_coverage(int(k))));
       char line[256];
-      std::snprintf(line, sizeof line, "%s %s %d %.3f %d %.3f %.3f %.3f %d %d %zu %.4f %.4f %d %d %d %d\n", session.views()[k].name.c_str(),
+      std::snprintf(line, sizeof line, "%s %s %d %.3f %d %.3f %.3f %.3f %d %d %zu %.4f %.4f %d %d\n", session.views()[k].name.c_str(),
                     status_word(v.status),
                     v.candidate, v.sam_score, v.mask_pixels, v.overlap, v.selection_inside, v.iou, int(v.from_selection),
                     v.depth_layers, v.background_gaussians, v.background_offset, v.background_tolerance, v.whole_pixels,
-                    v.beyond_part_pixels, v.in_front_pixels, v.mask_in_front_pixels);
+                    v.beyond_part_pixels);
       table += line;
     }
     write_file_atomic((dir / "views.txt").string(), table);  // the per-view evidence as figures

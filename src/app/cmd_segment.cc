@@ -78,8 +78,6 @@ int run_segment(const std::vector<std::string>& argv) {
     std::printf("  %-20s clicks %zu  mask %7d px  %s", session->views()[k].name.c_str(), st.clicks.size(),
                 st.mask_pixels, segment::status_name(st.status));
     if (st.beyond_part_pixels > 0) std::printf("  (%d px less: the background its part shows)", st.beyond_part_pixels);
-    if (st.in_front_pixels > 0) std::printf("  (%d band px vote against: a neighbour in front of the part)", st.in_front_pixels);
-    if (st.mask_in_front_pixels > 0) std::printf("  (%d px less: a neighbour in front of its part)", st.mask_in_front_pixels);
     if (!st.not_sent.empty()) std::printf("  (%zu click(s) not sent: %s)", st.not_sent.size(), st.not_sent[0].c_str());
     std::printf("\n");
   }

@@ -39,9 +39,6 @@ const char* const kSegmentOptionsHelp =
     "                                lies as deep as the background its part shows through its gaps\n"
     "                                (default: taken out; SAM's masks around foliage take in the\n"
     "                                background under and behind it)\n"
-    "  --keep-band-in-front          leave open between part and whole also what meets the part only\n"
-    "                                across a step towards the camera (default: it votes against; a\n"
-    "                                neighbour in front that SAM's larger masks merge with the part)\n"
     "  --no-negative-islands         a negative click acts only through SAM's masks (default: it also\n"
     "                                takes out the selected island its pixel shows, where touching\n"
     "                                Gaussians do not join that island to a positive click's)\n"
@@ -93,7 +90,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "keep-whole-islands", "keep-beyond-part", "keep-band-in-front", "no-negative-islands",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "keep-whole-islands", "keep-beyond-part", "no-negative-islands",
                                           "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives", "sam-all-clicks", "no-negative-granularity"};
   return f;
@@ -127,7 +124,6 @@ SegmentSetup parse_segment_setup(const Args& args) {
   if (args.has("rendered-surface")) s.session.background_options.spread_scale = 0;
   s.session.whole_islands.enabled = !args.has("keep-whole-islands");
   s.session.beyond_part.band = s.session.beyond_part.whole = !args.has("keep-beyond-part");
-  s.session.band_in_front.band = s.session.band_in_front.whole = !args.has("keep-band-in-front");
   s.session.negative_islands = !args.has("no-negative-islands");
   s.session.see_through = !args.has("no-see-through");
   s.session.agreement_inspection = !args.has("overlap-inspection");

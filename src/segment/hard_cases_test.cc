@@ -610,22 +610,6 @@ TEST(HardCases, APlantBesideTheClickedShrubIsNotSelected) {
   EXPECT_LT(ours.background, without.background / 2);
 }
 
-TEST(HardCases, AClimbingFrameIsSelectedWithoutThePlaypenInFrontOfIt) {
-  // The playroom was built by a session without sight of the tuning. 14 of the 19 views the
-  // click reaches mask the climbing triangle together with the playpen standing 40 cm in
-  // front of it; the clicked view and four others mask the triangle alone and left the
-  // playpen open between part and whole, so the fourteen selected it. Where the playpen
-  // meets the triangle in those views it lies about 12 % nearer: it is not a part of it, in
-  // their bands nor in the larger masks of the views that took both.
-  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
-  SessionOptions keep;
-  keep.band_in_front.band = keep.band_in_front.whole = false;
-  const auto [ours, without] = with_and_without("playroom/climbing_triangle", keep, "what is in front kept");
-  EXPECT_GT(ours.iou, 0.75);
-  EXPECT_GT(ours.iou, without.iou + 0.3);
-  EXPECT_LT(ours.background * 4, without.background);
-}
-
 TEST(HardCases, TheCycadsFrondsKeepOutTheCabinetSeenBetweenThem) {
   // The atrium was built after everything else was tuned (failure 1 as LLFF's fern shows
   // it): a fan of fronds before a cabinet that shows only between them, coarse Gaussians.

@@ -58,7 +58,7 @@ void disable_part_growth(SessionOptions& o) {
 SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = o.click_by_click = o.negative_granularity = false;
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;
-  o.whole_islands.enabled = o.negative_islands = o.beyond_part.band = o.beyond_part.whole = o.band_in_front.band = o.band_in_front.whole = false;
+  o.whole_islands.enabled = o.negative_islands = o.beyond_part.band = o.beyond_part.whole = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
   o.propagation.hidden_fallback = true;
@@ -523,18 +523,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
   auto take = [&](ViewState& vs, size_t k, const std::shared_ptr<const models::SegmentResult>& result, int c) {
     take_candidate(vs, result, c);
     vs.beyond_part_pixels = 0;
-    if (o.beyond_part.whole) {
-      const size_t cleared = trim_beyond_part(vs.mask, *result, c, vs.clicks, views_[k].depth, views_[k].alpha, o.beyond_part);
-      vs.beyond_part_pixels = int(cleared);
-      vs.mask_pixels -= int(cleared);
-    }
-    vs.mask_in_front_pixels = 0;
-    if (o.band_in_front.whole) {
-      const size_t cleared = trim_in_front(vs.mask, *result, c, vs.clicks, views_[k].depth, views_[k].alpha,
-                                           o.beyond_part, o.band_in_front);
-      vs.mask_in_front_pixels = int(cleared);
-      vs.mask_pixels -= int(cleared);
-    }
+    if (!o.beyond_part.whole) return;
+    const size_t cleared = trim_beyond_part(vs.mask, *result, c, vs.clicks, views_[k].depth, views_[k].alpha, o.beyond_part);
+    vs.beyond_part_pixels = int(cleared);
+    vs.mask_pixels -= int(cleared);
   };
   // Small decoder graphs scale poorly over cores: decode several views side by side, each
   // on one core, then give the calling thread back its own thread count.
@@ -838,7 +830,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
                                                 votes_against ? against : vs.neutral, o.background_options, o.threads,
                                                 surface);
     }
-    vs.whole_pixels = vs.in_front_pixels = 0;
+    vs.whole_pixels = 0;
     ViewVotes whole;
     if (o.whole_neutral && vs.sam) {
       TimeInto timed{part.band};
@@ -847,7 +839,6 @@ RoundReport Session::run_round(State& next, const State& prev) {
       Image band = whole_band(*vs.sam, vs.candidate, vs.sam_negative ? &vs.sam_negative->mask() : nullptr,
                               o.max_whole_growth, o.min_granularity_score);
       if (o.beyond_part.band) clear_band_beyond_part(band, mask, view.depth, view.alpha, o.beyond_part);
-      vs.in_front_pixels = int(clear_band_in_front(band, mask, view.depth, view.alpha, o.band_in_front));
       for (float v : band.data) vs.whole_pixels += v > 0.5f;
       // Its tiles over Gaussians that have had no positive vote wait (band_ledger.h).
       if (vs.whole_pixels > 0) whole = band_ledger.add_view(k, view.frame, band, shown, o.threads);

@@ -111,9 +111,6 @@ struct SessionOptions {
   // around foliage SAM's larger masks take that background in. Nor does a view that took
   // such a larger mask vote for it.
   BeyondPart beyond_part;
-  // ... nor what meets the part only across a step towards the camera (whole_band.h): a
-  // neighbour in front of it that SAM's larger masks merge with it.
-  BandInFront band_in_front;
   // ... and what it alone selects must touch, through selected Gaussians, what the votes
   // select on their own (whole_islands.h): a neighbour SAM merged in some views stands apart.
   IslandOptions whole_islands{true};
@@ -199,8 +196,6 @@ struct ViewState {
   double background_offset = 0;        // where the surroundings' Gaussians lie against the rendered surface
   double background_tolerance = 0;     // ... and how near that counts as on it (relative inverse depth)
   int whole_pixels = 0;                // pixels the larger candidates add around the mask (left open: part or whole?)
-  int in_front_pixels = 0;             // band pixels not left open: a neighbour in front of the part
-  int mask_in_front_pixels = 0;        // pixels taken from the mask: a neighbour in front of its part
   int beyond_part_pixels = 0;          // pixels taken from the mask as the background its part shows through its gaps
   bool inspected = false;              // overlap was measured (not for the clicked view, which votes first)
   // While the round votes: P-votes of the mask (when accepted) and the depth-gated weights

@@ -117,72 +117,20 @@ size_t clear_band_beyond_part(Image& band, const Image& mask, const Image& depth
   return cleared;
 }
 
-size_t clear_band_in_front(Image& band, const Image& mask, const Image& depth, const Image& alpha, const BandInFront& o) {
-  if (band.empty() || !o.band) return 0;
-  check_sizes({&band, &mask, &depth, &alpha}, "clear_band_in_front");
-  const int w = band.width, h = band.height;
-  auto in_band = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && band.at(x, y) > 0.5f; };
-  auto in_mask = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && mask.at(x, y) > 0.5f; };
-  auto rendered = [&](int x, int y) { return alpha.at(x, y) > 0.5f && depth.at(x, y) > 0; };
-  std::vector<uint8_t> seen(size_t(w) * size_t(h), 0);
-  std::vector<int> pixels;
-  size_t cleared = 0;
-  const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
-  for (int y0 = 0; y0 < h; ++y0)
-    for (int x0 = 0; x0 < w; ++x0) {
-      if (!in_band(x0, y0) || seen[size_t(y0) * size_t(w) + size_t(x0)]) continue;
-      // The region, flooded over 4-neighbours.
-      const int id = y0 * w + x0;
-      pixels.assign(1, id);
-      seen[size_t(id)] = 1;
-      for (size_t head = 0; head < pixels.size(); ++head) {
-        const int x = pixels[head] % w, y = pixels[head] / w;
-        for (int k = 0; k < 4; ++k) {
-          const int nx = x + dx[k], ny = y + dy[k];
-          if (!in_band(nx, ny) || seen[size_t(ny) * size_t(w) + size_t(nx)]) continue;
-          seen[size_t(ny) * size_t(w) + size_t(nx)] = 1;
-          pixels.push_back(ny * w + nx);
-        }
-      }
-      // Where it meets the part: its depth a few pixels into it against the part's a few
-      // pixels into the part (the meeting pixels themselves blend both sides).
-      int meeting = 0, joined = 0, nearer = 0;
-      for (int p : pixels) {
-        const int x = p % w, y = p / w;
-        for (int k = 0; k < 4; ++k) {
-          if (!in_mask(x + dx[k], y + dy[k])) continue;
-          const int bx = x - o.step * dx[k], by = y - o.step * dy[k];
-          const int mx = x + (1 + o.step) * dx[k], my = y + (1 + o.step) * dy[k];
-          if (!in_band(bx, by) || !in_mask(mx, my) || !rendered(bx, by) || !rendered(mx, my)) continue;
-          const double db = depth.at(bx, by), dm = depth.at(mx, my);
-          ++meeting;
-          if (std::abs(db - dm) <= o.tolerance * dm) ++joined;
-          else if (db < dm) ++nearer;
-        }
-      }
-      if (meeting < o.min_meeting || double(joined) > o.max_joined * meeting || double(nearer) < o.min_nearer * meeting)
-        continue;
-      for (int p : pixels) band.data[size_t(p)] = 0.f;
-      cleared += pixels.size();
-    }
-  return cleared;
-}
-
-namespace {
-
-// The part of a view's larger mask that its clicks are on: SAM's largest other candidate of
-// min_part..max_part of the mask's area (`area`), >= 90 % inside it, holding every positive
-// click. Null when there is none, or no positive click.
-const Mask* clicked_part(const std::vector<uint8_t>& mask, size_t area, const models::SegmentResult& r, int chosen,
-                         const std::vector<Click>& clicks, int width, int height, const BeyondPart& o) {
+size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
+                        const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& o) {
+  const size_t a = mask_area(mask);
+  if (a == 0) return 0;
+  if (mask.size() != depth.data.size() || mask.size() != alpha.data.size())
+    throw Error("trim_beyond_part: the mask, depth and alpha must be of one size");
   std::vector<size_t> clicked;  // the positive clicks' pixels
   for (const Click& k : clicks) {
     if (k.label != 1) continue;
     const int x = int(std::floor(k.x)), y = int(std::floor(k.y));
-    if (x < 0 || y < 0 || x >= width || y >= height) return nullptr;
-    clicked.push_back(size_t(y) * size_t(width) + size_t(x));
+    if (x < 0 || y < 0 || x >= depth.width || y >= depth.height) return 0;
+    clicked.push_back(size_t(y) * size_t(depth.width) + size_t(x));
   }
-  if (clicked.empty()) return nullptr;
+  if (clicked.empty()) return 0;
   const Mask* part = nullptr;
   size_t part_area = 0;
   for (size_t c = 0; c < r.candidates.size(); ++c) {
@@ -195,24 +143,12 @@ const Mask* clicked_part(const std::vector<uint8_t>& mask, size_t area, const mo
       pa += p.data[i] != 0;
       inside += p.data[i] && mask[i];
     }
-    if (double(pa) < o.min_part * double(area) || double(pa) > o.max_part * double(area) ||
-        double(inside) < 0.9 * double(pa) || pa <= part_area)
+    if (double(pa) < o.min_part * double(a) || double(pa) > o.max_part * double(a) || double(inside) < 0.9 * double(pa) ||
+        pa <= part_area)
       continue;
     part = &p;
     part_area = pa;
   }
-  return part;
-}
-
-}  // namespace
-
-size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
-                        const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& o) {
-  const size_t a = mask_area(mask);
-  if (a == 0) return 0;
-  if (mask.size() != depth.data.size() || mask.size() != alpha.data.size())
-    throw Error("trim_beyond_part: the mask, depth and alpha must be of one size");
-  const Mask* part = clicked_part(mask, a, r, chosen, clicks, depth.width, depth.height, o);
   if (!part) return 0;
   const float from = seen_through_depth(to_image(*part), depth, alpha, o);
   size_t cleared = 0;
@@ -221,27 +157,6 @@ size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult&
       mask[i] = 0;
       ++cleared;
     }
-  return cleared;
-}
-
-size_t trim_in_front(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
-                     const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& parts,
-                     const BandInFront& o) {
-  const size_t a = mask_area(mask);
-  if (a == 0 || !o.whole) return 0;
-  if (mask.size() != depth.data.size() || mask.size() != alpha.data.size())
-    throw Error("trim_in_front: the mask, depth and alpha must be of one size");
-  const Mask* part = clicked_part(mask, a, r, chosen, clicks, depth.width, depth.height, parts);
-  if (!part) return 0;
-  // What the mask adds around its part is judged as a band around it.
-  Image band(depth.width, depth.height, 1);
-  for (size_t i = 0; i < mask.size(); ++i) band.data[i] = mask[i] && !part->data[i] ? 1.f : 0.f;
-  const Image before = band;
-  BandInFront judge = o;
-  judge.band = true;
-  const size_t cleared = clear_band_in_front(band, to_image(*part), depth, alpha, judge);
-  for (size_t i = 0; i < mask.size() && cleared; ++i)
-    if (before.data[i] > 0.5f && band.data[i] <= 0.5f) mask[i] = 0;
   return cleared;
 }
 

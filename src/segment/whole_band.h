@@ -53,28 +53,6 @@ float seen_through_depth(const Image& part, const Image& depth, const Image& alp
 // number of pixels cleared.
 size_t clear_band_beyond_part(Image& band, const Image& mask, const Image& depth, const Image& alpha, const BeyondPart& o);
 
-// A neighbour standing in front of the part that SAM's larger candidate merges with it (a
-// playpen before the climbing frame clicked behind it) meets the part, in the image, only
-// across a step towards the camera. A whole's other parts join the part where they meet it
-// (a chair's seat under its back, a lamp's stem under its shade), at its depth.
-struct BandInFront {
-  bool band = true;     // a view that took the part: such a band region is not left open
-  bool whole = true;    // a view that took the larger mask: such a region of it does not vote
-  int step = 2;              // depths compared this many pixels either side of where band and part meet
-  double tolerance = 0.05;   // relative depth within which the two sides join
-  double max_joined = 0.1;   // a band region joins the part where more than this share of its meeting pixels do
-  double min_nearer = 0.5;   // ... and lies in front of it where at least this share are nearer
-  int min_meeting = 8;       // meeting pixels needed to judge a region
-};
-
-// Clears from the band every 4-connected region of it that meets the part (`mask` > 0.5)
-// only across such a step: where it meets the part, its depth `step` pixels into it is
-// nearer than the part's `step` pixels into the part by more than `tolerance` at at least
-// min_nearer of the meeting pixels, and within tolerance at at most max_joined of them.
-// Regions that do not meet the part, or meet it at fewer than min_meeting pixels with depth
-// on both sides, stay. Returns the number of pixels cleared.
-size_t clear_band_in_front(Image& band, const Image& mask, const Image& depth, const Image& alpha, const BandInFront& o);
-
 // A view's mask (`mask`: SAM's candidate `chosen`, less the negative clicks' region, 0/1 per
 // pixel) less its rendered pixels outside its part at or beyond the depth the part shows
 // through its gaps. The part is the largest other candidate of min_part..max_part of the
@@ -82,13 +60,5 @@ size_t clear_band_in_front(Image& band, const Image& mask, const Image& depth, c
 // must be one): what the click is on. Returns the number of pixels cleared.
 size_t trim_beyond_part(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
                         const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& o);
-
-// A view's mask (as for trim_beyond_part: SAM's candidate `chosen`, its part found the same
-// way with `parts`' bounds) less the regions of it outside its part that meet the part only
-// across a step towards the camera (clear_band_in_front with `o`). Returns the number of
-// pixels cleared.
-size_t trim_in_front(std::vector<uint8_t>& mask, const models::SegmentResult& r, int chosen,
-                     const std::vector<Click>& clicks, const Image& depth, const Image& alpha, const BeyondPart& parts,
-                     const BandInFront& o);
 
 }  // namespace isegman::segment

@@ -21,22 +21,11 @@ Mask rect_mask(int x0, int y0, int x1, int y1) {
   return m;
 }
 
-// A view's part (the mask), the band around it, its rendered depth (30 where nothing is
-// painted below) and alpha.
-struct BandImages {
-  Image mask = Image(kW, kH, 1), band = Image(kW, kH, 1), depth = Image(kW, kH, 1, 30.f), alpha = Image(kW, kH, 1, 1.f);
-  int band_pixels(int x0, int x1) const {  // in columns x0..x1-1
-    int n = 0;
-    for (int y = 0; y < kH; ++y)
-      for (int x = x0; x < x1; ++x) n += band.data[size_t(y) * kW + x] > 0.5f;
-    return n;
-  }
-};
-
 // A view of a part (the mask: x 20..49, y 15..44, rendered at depth 10) inside a larger
 // candidate reaching 10 px further on every side. Left of the part the band shows a
 // sibling part (depth 10.5), right of it the background (depth 20).
-struct PartView : BandImages {
+struct PartView {
+  Image mask = Image(kW, kH, 1), band = Image(kW, kH, 1), depth = Image(kW, kH, 1, 30.f), alpha = Image(kW, kH, 1, 1.f);
   PartView() {
     for (int y = 5; y < 55; ++y)
       for (int x = 10; x < 60; ++x) {
@@ -51,6 +40,12 @@ struct PartView : BandImages {
   void open_gaps() {
     for (int y = 25; y < 35; ++y)
       for (int x = 22; x < 48; x += 3) depth.data[size_t(y) * kW + x] = 20.f;
+  }
+  int band_pixels(int x0, int x1) const {
+    int n = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = x0; x < x1; ++x) n += band.data[size_t(y) * kW + x] > 0.5f;
+    return n;
   }
 };
 
@@ -214,88 +209,12 @@ TEST(WholeBand, ALargerMaskIsTrimmedOnlyByThePartTheClickIsOn) {
   EXPECT_EQ(trim_beyond_part(v.mask, v.r, 1, v.clicks, v.depth, v.alpha, BeyondPart{}), 800u);
 }
 
-// A part (x 20..49, y 15..44, depth 10) whose larger candidate adds two regions apart from
-// each other: left of it a sibling part that joins it at its depth (10.3), right of it a
-// neighbour standing in front of it (depth 8.5, 15 % nearer).
-struct FrontView : BandImages {
-  FrontView() {
-    for (int y = 15; y < 45; ++y)
-      for (int x = 8; x < 66; ++x) {
-        const size_t i = size_t(y) * kW + x;
-        const bool in_part = x >= 20 && x < 50;
-        (in_part ? mask : band).data[i] = 1.f;
-        depth.data[i] = in_part ? 10.f : x < 20 ? 10.3f : 8.5f;
-      }
-  }
-};
-
-TEST(WholeBand, ANeighbourInFrontOfThePartIsNoLongerOpenASiblingPartIs) {
-  FrontView v;
-  EXPECT_EQ(clear_band_in_front(v.band, v.mask, v.depth, v.alpha, BandInFront{}), 16u * 30u);
-  EXPECT_EQ(v.band_pixels(50, kW), 0);
-  EXPECT_EQ(v.band_pixels(0, 20), 12 * 30);
-  // Switched off, nothing changes.
-  FrontView off;
-  BandInFront o;
-  o.band = false;
-  EXPECT_EQ(clear_band_in_front(off.band, off.mask, off.depth, off.alpha, o), 0u);
-  EXPECT_EQ(off.band_pixels(50, kW), 16 * 30);
-}
-
-TEST(WholeBand, APartThatJoinsThePartWhereItMeetsItStaysOpenThoughItComesNearer) {
-  // A chair's seat under its back: at the back's depth where they meet, nearer further on
-  // (1 % a pixel, as near at its far end as the neighbour in front above).
-  FrontView v;
-  for (int y = 15; y < 45; ++y)
-    for (int x = 50; x < 66; ++x) v.depth.data[size_t(y) * kW + x] = float(10.0 - 0.1 * (x - 49));
-  EXPECT_EQ(clear_band_in_front(v.band, v.mask, v.depth, v.alpha, BandInFront{}), 0u);
-  EXPECT_EQ(v.band_pixels(50, kW), 16 * 30);
-}
-
-TEST(WholeBand, WhatLiesBehindThePartOrBarelyMeetsItIsNotJudgedInFront) {
-  FrontView behind;  // the right region deeper than the part: that is for the background rules
-  for (int y = 15; y < 45; ++y)
-    for (int x = 50; x < 66; ++x) behind.depth.data[size_t(y) * kW + x] = 20.f;
-  EXPECT_EQ(clear_band_in_front(behind.band, behind.mask, behind.depth, behind.alpha, BandInFront{}), 0u);
-  FrontView unrendered;  // no depth where the right region meets the part
-  for (int y = 15; y < 45; ++y) unrendered.alpha.data[size_t(y) * kW + 52] = 0.f;
-  EXPECT_EQ(clear_band_in_front(unrendered.band, unrendered.mask, unrendered.depth, unrendered.alpha, BandInFront{}), 0u);
-  FrontView few;  // it meets the part along 5 rows only
-  for (int y = 15; y < 45; ++y)
-    for (int x = 50; x < 66; ++x)
-      if (y >= 20) few.band.data[size_t(y) * kW + x] = x >= 56 ? 1.f : 0.f;
-  EXPECT_EQ(clear_band_in_front(few.band, few.mask, few.depth, few.alpha, BandInFront{}), 0u);
-}
-
-TEST(WholeBand, ALargerMaskLosesTheNeighbourInFrontOfItsPart) {
-  // The FrontView's part and both band regions as SAM's larger candidate, which the view took.
-  FrontView v;
-  models::SegmentResult r;
-  r.candidates = {rect_mask(20, 15, 50, 45), rect_mask(8, 15, 66, 45)};
-  r.candidate_scores = {0.9f, 0.95f};
-  r.mask_index = 1;
-  std::vector<uint8_t> mask = r.candidates[1].data;
-  const std::vector<Click> on_part{pixel_centre_click(30, 30, 1)};
-  EXPECT_EQ(trim_in_front(mask, r, 1, on_part, v.depth, v.alpha, BeyondPart{}, BandInFront{}), 16u * 30u);
-  EXPECT_EQ(mask_area(mask), size_t(12 * 30 + 30 * 30));  // the part and its sibling
-  // Without a click on a part, or switched off, the mask stays whole.
-  mask = r.candidates[1].data;
-  const std::vector<Click> on_neighbour{pixel_centre_click(60, 30, 1)};
-  EXPECT_EQ(trim_in_front(mask, r, 1, on_neighbour, v.depth, v.alpha, BeyondPart{}, BandInFront{}), 0u);
-  BandInFront off;
-  off.whole = false;
-  EXPECT_EQ(trim_in_front(mask, r, 1, on_part, v.depth, v.alpha, BeyondPart{}, off), 0u);
-  EXPECT_EQ(mask_area(mask), size_t(58 * 30));
-}
-
 TEST(WholeBand, ImagesOfAnotherSizeAreAnError) {
   PartView v;
   const Image small(kW / 2, kH, 1);
   EXPECT_THROW(clear_band_beyond_part(v.band, small, v.depth, v.alpha, BeyondPart{}), Error);
-  EXPECT_THROW(clear_band_in_front(v.band, small, v.depth, v.alpha, BandInFront{}), Error);
   WholeView w;
   EXPECT_THROW(trim_beyond_part(w.mask, w.r, 1, w.clicks, w.depth, small, BeyondPart{}), Error);
-  EXPECT_THROW(trim_in_front(w.mask, w.r, 1, w.clicks, w.depth, small, BeyondPart{}, BandInFront{}), Error);
   EXPECT_THROW(seen_through_depth(small, w.depth, w.alpha, BeyondPart{}), Error);
 }
 
