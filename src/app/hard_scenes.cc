@@ -118,18 +118,34 @@ Camera named(Camera cam, int id, const char* prefix) {
   return cam;
 }
 
+// A grid held by hand: each camera up to `wobble` off the grid (every axis) and aimed up to
+// `aim` off (across and up), drawn from its own random stream so the Gaussians do not move
+// with it.
+struct HandHeld {
+  uint64_t seed = 0;
+  double wobble = 0.03, aim = 0.05;
+};
+
 // A forward-facing capture as LLFF scenes are taken: a 5 x 4 grid of nearly parallel
-// cameras, row by row from the bottom (grid_000, ...), at `eye` + (column - 2, row - 1.5)
-// steps of `step` (its x across, its z up; its y is not used), each looking at `target`
-// moved the same way by `aim`.
+// cameras, row by row from the bottom (grid_000, ...; hand_000, ... when `hand` is given),
+// at `eye` + (column - 2, row - 1.5) steps of `step` (its x across, its z up; its y is not
+// used), each looking at `target` moved the same way by `aim`.
 void forward_grid(DemoScene& demo, const Vec3& eye, const Vec3& step, const Vec3& target, const Vec3& aim, double fov,
-                  const EvalSetOptions& opt) {
+                  const EvalSetOptions& opt, const HandHeld* hand = nullptr) {
+  SplitMix64 jitter(hand ? hand->seed : 0);
   int id = 0;
   for (int row = 0; row < 4; ++row)
     for (int col = 0; col < 5; ++col) {
-      const Vec3 from{eye.x + (col - 2) * step.x, eye.y, eye.z + (row - 1.5) * step.z};
-      const Vec3 to{target.x + (col - 2) * aim.x, target.y, target.z + (row - 1.5) * aim.z};
-      demo.bundle.cameras.push_back(named(Camera::look_at(from, to, {0, 0, 1}, opt.width, opt.height, fov), id++, "grid"));
+      Vec3 from{eye.x + (col - 2) * step.x, eye.y, eye.z + (row - 1.5) * step.z};
+      Vec3 to{target.x + (col - 2) * aim.x, target.y, target.z + (row - 1.5) * aim.z};
+      if (hand) {
+        const double w = hand->wobble, a = hand->aim;
+        from = from + Vec3{jitter.range(-w, w), jitter.range(-w, w), jitter.range(-w, w)};
+        const double ax = jitter.range(-a, a), az = jitter.range(-a, a);
+        to = to + Vec3{ax, 0, az};
+      }
+      demo.bundle.cameras.push_back(
+          named(Camera::look_at(from, to, {0, 0, 1}, opt.width, opt.height, fov), id++, hand ? "hand" : "grid"));
     }
 }
 
@@ -1041,18 +1057,9 @@ EvalScene porch(const EvalSetOptions& opt) {
     const Vec3 c = near_shrub ? Vec3{0.25, 0.38, 0.18} : render_rgb * rng.range(0.6, 1.05);
     b.floater(p, rng.range(0.02, 0.07) * sz, c, rng.range(0.05, 0.3));
   }
-  // The capture: a 5 x 4 grid 4 m from the wall, held by hand: each camera a little off
-  // the grid and off its aim (its own random stream, so the Gaussians do not move with it).
-  SplitMix64 hand(9);
-  int id = 0;
-  for (int row = 0; row < 4; ++row)
-    for (int col = 0; col < 5; ++col) {
-      const Vec3 wobble{hand.range(-0.03, 0.03), hand.range(-0.03, 0.03), hand.range(-0.03, 0.03)};
-      const Vec3 aim{hand.range(-0.06, 0.06), 0, hand.range(-0.06, 0.06)};
-      const Vec3 eye = Vec3{0.25 + (col - 2) * 0.2, -1.7, 1.15 + (row - 1.5) * 0.15} + wobble;
-      const Vec3 target = Vec3{0.25 + (col - 2) * 0.07, wall_y, 0.8 + (row - 1.5) * 0.05} + aim;
-      demo.bundle.cameras.push_back(named(Camera::look_at(eye, target, {0, 0, 1}, opt.width, opt.height, 62.0), id++, "hand"));
-    }
+  // The capture: a 5 x 4 grid 4 m from the wall, held by hand.
+  const HandHeld hand{9, 0.03, 0.06};
+  forward_grid(demo, {0.25, -1.7, 1.15}, {0.2, 0, 0.15}, {0.25, wall_y, 0.8}, {0.07, 0, 0.05}, 62.0, opt, &hand);
   add_task(s, "shrub", "shrub with gaps 12 cm in front of a noisy wall", shrub, shrub_c + Vec3{0.05, -0.3, 0.05}, 7);
   add_task(s, "watering_can", "object partly behind an occluder of the same grey", can, can_c + Vec3{-0.1, -0.06, 0.2}, 12);
   add_task(s, "post", "part of a thin post leaving the frame, the wall's colour behind it", post, post_c + Vec3{0, -0.046, 1.5}, 9);
@@ -1699,17 +1706,9 @@ EvalScene playroom(const EvalSetOptions& opt) {
   for (int i = 0, n = int(160 * d); i < n; ++i)
     b.floater({rng.range(-2.0, 2.4), rng.range(-0.8, 1.45), rng.range(0.1, 2.3)}, rng.range(0.02, 0.07) * sz,
               Vec3{0.72, 0.72, 0.66} * rng.range(0.6, 1.1), rng.range(0.05, 0.3));
-  // The capture: a 5 x 4 grid 3.25 m from the wall, held by hand (its own random stream).
-  SplitMix64 hand(31);
-  int id = 0;
-  for (int row = 0; row < 4; ++row)
-    for (int col = 0; col < 5; ++col) {
-      const Vec3 wobble{hand.range(-0.03, 0.03), hand.range(-0.03, 0.03), hand.range(-0.03, 0.03)};
-      const Vec3 aim{hand.range(-0.05, 0.05), 0, hand.range(-0.05, 0.05)};
-      const Vec3 eye = Vec3{0.15 + (col - 2) * 0.2, -1.7, 1.225 + (row - 1.5) * 0.15} + wobble;
-      const Vec3 target = Vec3{0.15 + (col - 2) * 0.07, wall_y, 0.55 + (row - 1.5) * 0.05} + aim;
-      demo.bundle.cameras.push_back(named(Camera::look_at(eye, target, {0, 0, 1}, opt.width, opt.height, 66.0), id++, "hand"));
-    }
+  // The capture: a 5 x 4 grid 3.25 m from the wall, held by hand.
+  const HandHeld hand{31, 0.03, 0.05};
+  forward_grid(demo, {0.15, -1.7, 1.225}, {0.2, 0, 0.15}, {0.15, wall_y, 0.55}, {0.07, 0, 0.05}, 66.0, opt, &hand);
   add_task(s, "climbing_triangle", "rungs with gaps before a patterned wall, the far rungs between the near ones", triangle,
            {(tri_x0 + tri_x1) / 2 + 0.1, tri_y - tri_half * (1 - 4 / 8.0) - 0.016, tri_h * 4 / 8.0}, 7);
   add_task(s, "rocking_horse", "behind a toy chest: only its back, neck and head above the lid; the clicked flank hidden from the lower views",
