@@ -114,6 +114,7 @@ int run_eval_ablation(const Args& args) {
       {"- negative islands", [](segment::SessionOptions& o) { o.negative_islands = false; }},
       {"- band beyond the part", [](segment::SessionOptions& o) { o.beyond_part.band = false; }},
       {"- mask beyond the part", [](segment::SessionOptions& o) { o.beyond_part.whole = false; }},
+      {"- attached parts", [](segment::SessionOptions& o) { o.attached_parts.enabled = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

@@ -35,6 +35,9 @@ const char* const kSegmentOptionsHelp =
     "  --keep-whole-islands          keep what only the part/whole rule selects even where it does not\n"
     "                                touch the rest of the selection (default: such islands, a\n"
     "                                neighbour SAM merged in some views, are dropped)\n"
+    "  --no-attached-parts           select only what most views' masks hold (default: also what a\n"
+    "                                minority of the views masks with the object where it attaches to the\n"
+    "                                selection: a broom's bristles, a kettle's spout)\n"
     "  --keep-beyond-part            keep in a view's mask, and leave open between part and whole, what\n"
     "                                lies as deep as the background its part shows through its gaps\n"
     "                                (default: taken out; SAM's masks around foliage take in the\n"
@@ -90,7 +93,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "keep-whole-islands", "keep-beyond-part", "no-negative-islands",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "keep-whole-islands", "no-attached-parts", "keep-beyond-part", "no-negative-islands",
                                           "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives", "sam-all-clicks", "no-negative-granularity"};
   return f;
@@ -123,6 +126,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.background_against = !args.has("background-neutral");
   if (args.has("rendered-surface")) s.session.background_options.spread_scale = 0;
   s.session.whole_islands.enabled = !args.has("keep-whole-islands");
+  s.session.attached_parts.enabled = !args.has("no-attached-parts");
   s.session.beyond_part.band = s.session.beyond_part.whole = !args.has("keep-beyond-part");
   s.session.negative_islands = !args.has("no-negative-islands");
   s.session.see_through = !args.has("no-see-through");

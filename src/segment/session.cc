@@ -59,6 +59,7 @@ SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = o.click_by_click = o.negative_granularity = false;
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;
   o.whole_islands.enabled = o.negative_islands = o.beyond_part.band = o.beyond_part.whole = false;
+  o.attached_parts.enabled = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
   o.propagation.hidden_fallback = true;
@@ -785,6 +786,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // once per view for inspection, votes, the background gate and the centre evidence),
   // gated to the target's depth layer.
   // `raw` (optional): the mask's votes already computed in the inspection pass.
+  // Per Gaussian: set aside as behind the target by some view's depth layers or background
+  // gate this round (attached_parts.h).
+  std::vector<uint8_t> set_aside;
   auto vote = [&](size_t k, ViewState& vs, const std::vector<bool>* selection, ViewVotes* raw, const Image& mask) {
     const SegmentView& view = views_[k];
     if (raw) {
@@ -813,6 +817,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       vs.depth_layers = g.layers;
       vs.gated_share = g.gated_share;
     }
+    ViewVotes against;  // what the gate finds, left out of the neutral weights: they count in the view's total
     if (o.background_gate && !vs.positive.index.empty()) {
       TimeInto timed{part.background};
       // Background pixels must not be nearer than the target: outside the mask, nearer
@@ -824,11 +829,15 @@ RoundReport Session::run_round(State& next, const State& prev) {
                                                                all_votes_of_view(k), near_limit, o.background_options, o.threads);
       vs.background_offset = surface.offset;
       vs.background_tolerance = surface.tolerance >= 0 ? surface.tolerance : o.background_options.tolerance;
-      ViewVotes against;  // left out of the neutral weights: they count in the view's total
       const bool votes_against = o.background_against && !target.seeds.empty();
       vs.background_gaussians = gate_background(scene_, view.camera, bg, target, vs.positive,
                                                 votes_against ? against : vs.neutral, o.background_options, o.threads,
                                                 surface);
+    }
+    if (o.attached_parts.enabled) {  // what lies behind the target here joins no part
+      if (set_aside.size() != scene_.size()) set_aside.assign(scene_.size(), 0);
+      for (uint32_t j : vs.neutral.index) set_aside[j] = 1;
+      for (uint32_t j : against.index) set_aside[j] = 1;
     }
     vs.whole_pixels = 0;
     ViewVotes whole;
@@ -900,6 +909,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   auto inspect_and_vote = [&](int forced_first) {
     fresh = unjudged;
     acc = VoteAccumulator(scene_.size());
+    set_aside.clear();
     band_ledger = BandLedger(scene_.size());
     live.reset(scene_.size(), {o.tau, min_weight, o.centre_rule, {o.whole_neutral, o.whole_min_share}}, &excluded_);
     first = true;
@@ -1206,12 +1216,25 @@ RoundReport Session::run_round(State& next, const State& prev) {
   } else {
     next.selection = live.eligible();
   }
+  const std::vector<bool> before_islands = o.attached_parts.enabled ? next.selection : std::vector<bool>{};
   if (o.whole_islands.enabled) {
     TimeInto timed{part.decide};
     rep.whole_islands = drop_whole_islands(next.selection, acc, scene_, neighbours(), o.tau, min_weight,
                                            o.centre_rule, o.whole_islands);
   }
-  if (o.negative_islands && std::any_of(next.clicks.begin(), next.clicks.end(), [](const UserClick& c) { return c.click.label == 0; })) {
+  // Not in a round with a negative click: the user is taking things out, and a minority of
+  // the views' masks must not put back what touches the object (the rest of a row of books).
+  const bool any_negative =
+      std::any_of(next.clicks.begin(), next.clicks.end(), [](const UserClick& c) { return c.click.label == 0; });
+  if (o.attached_parts.enabled && !any_negative) {
+    TimeInto timed{part.decide};
+    std::vector<uint32_t> apart;
+    for (size_t j = 0; j < before_islands.size(); ++j)
+      if (before_islands[j] && !next.selection[j]) apart.push_back(uint32_t(j));
+    rep.attached_parts = add_attached_parts(next.selection, acc, min_weight, live.support(), set_aside, apart,
+                                            excluded_, scene_, neighbours(), o.attached_parts);
+  }
+  if (o.negative_islands && any_negative) {
     TimeInto timed{part.decide};
     // Every click's Gaussians first, from the selection before any island leaves it.
     std::vector<uint32_t> positive_seeds;

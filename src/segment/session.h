@@ -20,6 +20,7 @@
 #include "segment/votes.h"
 #include "segment/negative_islands.h"
 #include "segment/whole_islands.h"
+#include "segment/attached_parts.h"
 
 namespace isegman::segment {
 
@@ -114,6 +115,10 @@ struct SessionOptions {
   // ... and what it alone selects must touch, through selected Gaussians, what the votes
   // select on their own (whole_islands.h): a neighbour SAM merged in some views stands apart.
   IslandOptions whole_islands{true};
+  // What a minority of the views masks with the object (a broom's bristles, a kettle's
+  // spout) joins the selection where touching Gaussians attach it (attached_parts.h); not
+  // in a round with a negative click, where it would put back what the user takes out.
+  AttachedPartsOptions attached_parts{true};
   // A negative click on the selection takes out the island of selected Gaussians it shows,
   // unless touching Gaussians join it to what a positive click shows (negative_islands.h):
   // for what SAM cannot segment apart from the object.
@@ -232,6 +237,7 @@ struct RoundReport {
   size_t selected = 0;
   bool larger_granularity = false;  // the first view voted with a larger candidate than SAM's choice
   size_t whole_islands = 0;         // Gaussians the whole rule alone selected, apart from the rest (dropped)
+  size_t attached_parts = 0;        // Gaussians added as parts a minority of the views masks (attached_parts.h)
   size_t negative_islands = 0;      // Gaussians negative clicks took out as islands apart from the positive ones
   bool duplicate = false;  // the click repeated an earlier one: nothing changed
 };
