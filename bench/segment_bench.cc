@@ -93,13 +93,15 @@ Fixture* fixture(benchmark::State& state) {
 }
 
 // Arg 1: the default pipeline (every addition on); arg 0: the paper's pipeline alone;
-// arg 2: the default without the background gate (its cost, side by side).
+// arg 2: the default without the background gate, arg 3: without attached parts (their
+// costs, side by side).
 void BM_Interaction(benchmark::State& state) {
   Fixture* f = fixture(state);
   if (!f) return;
   segment::SessionOptions so;
   if (state.range(0) == 0) so = segment::paper_pipeline(so);
   if (state.range(0) == 2) so.background_gate = false;
+  if (state.range(0) == 3) so.attached_parts.enabled = false;
   f->session->set_options(so);
   segment::RoundReport last;
   for (auto _ : state) {
@@ -119,7 +121,7 @@ void BM_Interaction(benchmark::State& state) {
   state.counters["prompted_views"] = double(last.prompted);
   state.counters["embedding_ms_per_view"] = f->embed_ms_per_view;
 }
-BENCHMARK(BM_Interaction)->Arg(1)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_Interaction)->Arg(1)->Arg(0)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 // A click on a real capture: the fern fixture's plant in image010 (the click the accuracy
 // issue names), 20 views at 504x378, embeddings cached. Real Gaussians overlap far more per
