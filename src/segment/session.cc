@@ -782,13 +782,14 @@ RoundReport Session::run_round(State& next, const State& prev) {
     return all_votes;
   };
 
+  // Per Gaussian: set aside as behind the target by some view's depth layers or background
+  // gate this round (attached_parts.h).
+  std::vector<uint8_t> set_aside;
+
   // Votes of one view's mask (`mask`: vs.mask as an image at the view's resolution, built
   // once per view for inspection, votes, the background gate and the centre evidence),
   // gated to the target's depth layer.
   // `raw` (optional): the mask's votes already computed in the inspection pass.
-  // Per Gaussian: set aside as behind the target by some view's depth layers or background
-  // gate this round (attached_parts.h).
-  std::vector<uint8_t> set_aside;
   auto vote = [&](size_t k, ViewState& vs, const std::vector<bool>* selection, ViewVotes* raw, const Image& mask) {
     const SegmentView& view = views_[k];
     if (raw) {
@@ -1222,10 +1223,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
     rep.whole_islands = drop_whole_islands(next.selection, acc, scene_, neighbours(), o.tau, min_weight,
                                            o.centre_rule, o.whole_islands);
   }
-  // Not in a round with a negative click: the user is taking things out, and a minority of
-  // the views' masks must not put back what touches the object (the rest of a row of books).
   const bool any_negative =
       std::any_of(next.clicks.begin(), next.clicks.end(), [](const UserClick& c) { return c.click.label == 0; });
+  // Not in a round with a negative click: the user is taking things out, and a minority of
+  // the views' masks must not put back what touches the object (the rest of a row of books).
   if (o.attached_parts.enabled && !any_negative) {
     TimeInto timed{part.decide};
     std::vector<uint32_t> apart;
