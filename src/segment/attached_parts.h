@@ -8,10 +8,11 @@
 // in their masks (P / (A - W) above min_share) joins the selection when a chain of such
 // Gaussians, each touching the next, attaches it to the selection.
 //
-// Two kinds of Gaussian never join: what any view set aside as lying behind the target
-// (depth layers, background gate: the wall seen through a wheel's spokes, which SAM's disk
-// masks hold), and a neighbour that whole islands set apart (whole_islands.h: the plant
-// beside the clicked shrub), with what attaches to it.
+// Two kinds of Gaussian never join: what any view set aside from the target (its depth
+// layers: another layer than the target's; its background gate: the surface behind it, such
+// as the wall seen through a wheel's spokes, which SAM's disk masks hold), and a neighbour
+// that whole islands set apart (whole_islands.h: the plant beside the clicked shrub), with
+// what attaches to it.
 #pragma once
 
 #include <cstddef>

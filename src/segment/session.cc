@@ -782,8 +782,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
     return all_votes;
   };
 
-  // Per Gaussian: set aside as behind the target by some view's depth layers or background
-  // gate this round (attached_parts.h).
+  // Per Gaussian: set aside from the target by some view's depth layers or background gate
+  // this round (attached_parts.h).
   std::vector<uint8_t> set_aside;
 
   // Votes of one view's mask (`mask`: vs.mask as an image at the view's resolution, built
@@ -835,7 +835,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
                                                 votes_against ? against : vs.neutral, o.background_options, o.threads,
                                                 surface);
     }
-    if (o.attached_parts.enabled) {  // what lies behind the target here joins no part
+    if (o.attached_parts.enabled) {  // what this view set aside from the target joins no part
       if (set_aside.size() != scene_.size()) set_aside.assign(scene_.size(), 0);
       for (uint32_t j : vs.neutral.index) set_aside[j] = 1;
       for (uint32_t j : against.index) set_aside[j] = 1;
