@@ -43,11 +43,13 @@ size_t add_attached_parts(std::vector<bool>& selection, const VoteAccumulator& v
       });
     }
   };
-  // A neighbour whole islands set apart claims what attaches to it first.
-  size_t selected = 0;
-  for (bool s : selection) selected += s;
-  if (!apart.empty() && double(apart.size()) >= o.min_neighbour_share * double(selected))
-    flood(apart, [](uint32_t) {});
+  // A neighbour whole islands set apart claims what attaches to it first (the selection is
+  // counted only when something was set apart: a pass over every Gaussian).
+  if (!apart.empty()) {
+    size_t selected = 0;
+    for (bool s : selection) selected += s;
+    if (double(apart.size()) >= o.min_neighbour_share * double(selected)) flood(apart, [](uint32_t) {});
+  }
   // Then the selection takes what attaches to it: first what touches it, then what touches that.
   std::vector<uint32_t> seeds;
   {

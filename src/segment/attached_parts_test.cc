@@ -8,8 +8,9 @@
 namespace isegman::segment {
 namespace {
 
-// Gaussians of scale 6 mm on a line along x (neighbours 1 cm apart touch, 2 cm apart do not), one per entry of `x_cm`, each seen with total
-// weight 1. `share[i]` of it is positive, `open[i]` left open between part and whole (W).
+// Gaussians of scale 6 mm on a line along x (neighbours 1 cm apart touch, 2 cm apart do
+// not), one per entry of `x_cm`, each seen with total weight 1. `share[i]` of it is
+// positive, `open[i]` left open between part and whole (W).
 struct Line {
   GaussianScene scene;
   VoteAccumulator votes;
