@@ -232,9 +232,34 @@ int run_eval_ablation(const Args& args) {
   // Every camera of a synthetic scene votes, as in the paper, unless --views says otherwise
   // (auto: the K views segment chooses, as for a capture of many photos).
   const std::string synthetic_views = args.has("views") ? setup.views_spec : "all";
+  // Each real task's prompts: its own, then single clicks drawn on its mask of the clicked
+  // view, 3 px in from the outline (the masks were made on the photos, whose outlines the
+  // renders follow to a pixel or two). A task without a mask of that view keeps its own.
+  std::vector<std::vector<std::vector<Click>>> fixture_prompts;
+  for (const auto& t : fixture_tasks) {
+    std::vector<std::vector<Click>> prompts = {t.clicks};
+    const auto m = std::find_if(t.masks.begin(), t.masks.end(), [&](const auto& vm) { return vm.first == t.view; });
+    if (clicks_per_task > 1 && m != t.masks.end()) {
+      const Image mask = read_image(m->second);
+      const Camera& cam = *find_camera(fixture_scenes.at(t.scene_dir).cameras, t.view);
+      const std::vector<Click> drawn = clicks_drawn_on(mask, t.name, t.clicks.front(), clicks_per_task, 3);
+      for (size_t k = 1; k < drawn.size(); ++k) {
+        Click c = rescaled(drawn[k], mask.width, mask.height, cam.width, cam.height);
+        c = pixel_centre_click(std::floor(c.x), std::floor(c.y), 1);
+        prompts.push_back(second_clicks ? std::vector<Click>{t.clicks.front(), c} : std::vector<Click>{c});
+      }
+    }
+    if (prompts.size() > 1) {  // so that any of them can be repeated with `isegman segment`
+      std::printf("%s: drawn clicks in %s:", t.name.c_str(), t.view.c_str());
+      for (size_t k = 1; k < prompts.size(); ++k) std::printf(" %d,%d", int(prompts[k].back().x), int(prompts[k].back().y));
+      std::printf("\n");
+    }
+    fixture_prompts.push_back(std::move(prompts));
+  }
   if (clicks_per_task > 1)
-    std::printf("each synthetic task: its own click and %d drawn on the object in its clicked view%s; the mean IoU over "
-                "them (the rows below each configuration: the task's own click alone, the worst click)\n\n",
+    std::printf("each task: its own click and %d drawn on the object in its clicked view (real tasks: on its mask of "
+                "that view)%s; the mean IoU over them (the rows below each configuration: the task's own click alone, "
+                "the worst click)\n\n",
                 clicks_per_task - 1, second_clicks ? ", each as a second click after its own" : "");
   for (size_t ci = 0; ci < configs.size(); ++ci) {
     segment::SessionOptions so = setup.session;
@@ -290,27 +315,39 @@ int run_eval_ablation(const Args& args) {
       worst = std::min(worst, iou);
       ms += task_ms / n;
     }
-    for (const auto& t : fixture_tasks) {
+    for (size_t fi = 0; fi < fixture_tasks.size(); ++fi) {
+      const segment::EvalTask& t = fixture_tasks[fi];
       const SceneBundle& b = fixture_scenes.at(t.scene_dir);
       const Camera* cam = find_camera(b.cameras, t.view);
       if (!cam) throw Error(t.dir + "/prompts.json", "view '" + t.view + "' is not a camera of the scene");
-      segment::PipelineTimings tm;
-      auto session = segment::segment_from_prompts(b, int(cam - b.cameras.data()), t.clicks, sam, so, setup.views,
-                                                   setup.views_spec, &tm);
-      const segment::TaskResult r = segment::score_task(t, b, session->selection(), so.threads);
-      per.push_back(r.iou);
-      miou += r.iou;
-      macc += r.accuracy;
-      worst = std::min(worst, r.iou);
-      ms += tm.ms_interaction();
-      if (!overlays.empty() && ci == 0) write_overlays(*session, t.name);
+      double iou = 0, acc = 0, task_ms = 0, task_worst = 1;
+      const std::vector<std::vector<Click>>& prompts = fixture_prompts[fi];
+      for (size_t k = 0; k < prompts.size(); ++k) {
+        segment::PipelineTimings tm;
+        auto session = segment::segment_from_prompts(b, int(cam - b.cameras.data()), prompts[k], sam, so, setup.views,
+                                                     setup.views_spec, &tm);
+        const segment::TaskResult r = segment::score_task(t, b, session->selection(), so.threads);
+        iou += r.iou;
+        acc += r.accuracy;
+        task_ms += tm.ms_interaction();
+        task_worst = std::min(task_worst, r.iou);
+        if (k == 0) per_own.push_back(r.iou);
+        if (!overlays.empty() && ci == 0) write_overlays(*session, k ? t.name + "_click" + std::to_string(k) : t.name);
+      }
+      const double n = double(prompts.size());
+      per.push_back(iou / n);
+      per_worst.push_back(task_worst);
+      miou += iou / n;
+      macc += acc / n;
+      worst = std::min(worst, iou / n);
+      ms += task_ms / n;
     }
     const double k = double(tasks.size() + fixture_tasks.size());
     std::printf("| %s | %.2f | %.1f | %.2f | %.2f s |", configs[ci].label.c_str(), 100 * miou / k, 100 * worst,
                 100 * macc / k, ms / k / 1000);
     for (double p : per) std::printf(" %.1f |", 100 * p);
     std::printf("\n");
-    if (clicks_per_task > 1 && !tasks.empty()) {
+    if (clicks_per_task > 1) {
       auto row = [](const char* label, const std::vector<double>& v) {
         double mean = 0, least = 1;
         for (double p : v) {
@@ -321,8 +358,8 @@ int run_eval_ablation(const Args& args) {
         for (double p : v) std::printf(" %.1f |", 100 * p);
         std::printf("\n");
       };
-      row("... the task's own click (synthetic)", per_own);
-      row("... its worst click per task (synthetic)", per_worst);
+      row("... the task's own click", per_own);
+      row("... its worst click per task", per_worst);
     }
     if (corrective > 0 && !tasks.empty()) {
       for (int c = 0; c <= corrective; ++c) {
@@ -425,9 +462,10 @@ RegisterCommand reg("ablation", "measure the segmentation's design choices on sy
                     "  every camera that sees it, per task and averaged, and the time per interaction. The eval\n"
                     "  set also scores the tasks in --fixture-tasks (default eval/fixture_tasks) on the real scenes\n"
                     "  under --fixtures (default ../shared/fixtures) against their hand-made masks; skipped with a\n"
-                    "  message when either folder is missing. --clicks-per-task K (eval set): each synthetic task\n"
-                    "  from its own click and K-1 more drawn (fixed per task) on the object in its clicked view;\n"
-                    "  the mean over them, and rows of each task's own click and of its worst click.\n"
+                    "  message when either folder is missing. --clicks-per-task K (eval set): each task from its\n"
+                    "  own click and K-1 more drawn (fixed per task) on the object in its clicked view (a real\n"
+                    "  task: on its mask of that view, 3 px in from the outline); the mean over them, and rows\n"
+                    "  of each task's own click and of its worst click.\n"
                     "  --second-clicks: each drawn click is given after the task's own click, as a second\n"
                     "  positive click on the same object, instead of alone. --corrective-clicks N (eval set):\n"
                     "  after each synthetic task's own click, up to N clicks as a user corrects, at the most\n"

@@ -1846,19 +1846,33 @@ std::vector<EvalScene> make_eval_scenes(const EvalSetOptions& opt) {
 }
 
 std::vector<Click> task_clicks(const EvalScene& scene, const EvalTaskSpec& task, int count) {
-  std::vector<Click> clicks = {pixel_centre_click(task.x, task.y, 1)};
-  if (count <= 1) return clicks;
+  const Click own = pixel_centre_click(task.x, task.y, 1);
+  if (count <= 1) return {own};
   const Camera& cam = scene.scene.bundle.cameras[size_t(task.camera)];
   const Image truth = render_selection(scene.scene.bundle.gaussians, cam, demo_object_mask(scene.scene, task.object));
-  std::vector<std::pair<int, int>> on;
-  for (int y = 0; y < truth.height; ++y)
-    for (int x = 0; x < truth.width; ++x)
-      if (truth.at(x, y) > 0.5f) on.push_back({x, y});
-  uint64_t seed = 1469598103934665603ull;  // FNV-1a of the task's name
-  for (char ch : task.name) seed = (seed ^ uint8_t(ch)) * 1099511628211ull;
+  return clicks_drawn_on(truth, task.name, own, count);
+}
+
+std::vector<Click> clicks_drawn_on(const Image& mask, const std::string& name, const Click& own, int count, int inset) {
+  std::vector<Click> clicks = {own};
+  auto on = [&](int x, int y) {
+    for (int c = 0; c < mask.channels; ++c)
+      if (mask.at(x, y, c) > 0.5f) return true;
+    return false;
+  };
+  std::vector<std::pair<int, int>> inside;
+  for (int y = inset; y < mask.height - inset; ++y)
+    for (int x = inset; x < mask.width - inset; ++x) {
+      bool all = true;
+      for (int dy = -inset; dy <= inset && all; ++dy)
+        for (int dx = -inset; dx <= inset && all; ++dx) all = on(x + dx, y + dy);
+      if (all) inside.push_back({x, y});
+    }
+  uint64_t seed = 1469598103934665603ull;  // FNV-1a of the name
+  for (char ch : name) seed = (seed ^ uint8_t(ch)) * 1099511628211ull;
   SplitMix64 rng(seed);
-  for (int k = 1; k < count && !on.empty(); ++k) {
-    const auto& [x, y] = on[size_t(rng.uniform() * double(on.size()))];
+  for (int k = 1; k < count && !inside.empty(); ++k) {
+    const auto& [x, y] = inside[size_t(rng.uniform() * double(inside.size()))];
     clicks.push_back(pixel_centre_click(x, y, 1));
   }
   return clicks;

@@ -11,6 +11,7 @@
 
 #include "app/demo_scene.h"
 #include "core/click.h"
+#include "core/image.h"
 
 namespace isegman {
 
@@ -55,5 +56,11 @@ bool find_click(const DemoScene& scene, int object, const Vec3& anchor, int firs
 // shows it (its rendered truth mask > 0.5), as users click: near edges, on thin parts.
 // The draws are fixed per task (seeded by its name).
 std::vector<Click> task_clicks(const EvalScene& scene, const EvalTaskSpec& task, int count);
+
+// `own`, then `count` - 1 clicks drawn uniformly from the pixels of `mask` (one channel or
+// more: a pixel is on where any channel > 0.5) whose every neighbour within `inset` pixels
+// (a square) is on too, in the mask's pixels. Fixed by `name` (its FNV-1a hash seeds the
+// draws). Fewer when no pixel qualifies.
+std::vector<Click> clicks_drawn_on(const Image& mask, const std::string& name, const Click& own, int count, int inset = 0);
 
 }  // namespace isegman
