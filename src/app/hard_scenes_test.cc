@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 
 namespace isegman {
 namespace {
@@ -52,6 +53,30 @@ TEST(DensifyCameras, AddsCamerasAlongThePathAndKeepsTheOriginals) {
   std::vector<Camera> same = cams;
   densify_cameras(same, 1);
   EXPECT_EQ(same.size(), cams.size());
+}
+
+TEST(ClicksDrawnOn, DrawsInsideTheMaskKeepingTheInsetAndTheSameDrawsPerName) {
+  Image mask(30, 20, 1);  // a 10 x 8 block at (10..19, 6..13)
+  for (int y = 6; y < 14; ++y)
+    for (int x = 10; x < 20; ++x) mask.at(x, y) = 1;
+  const Click own = pixel_centre_click(0, 0, 1);
+  const std::vector<Click> drawn = clicks_drawn_on(mask, "task", own, 40, 3);
+  ASSERT_EQ(drawn.size(), 40u);
+  EXPECT_EQ(drawn[0].x, own.x);  // the task's own click first, whatever the mask
+  std::set<std::pair<int, int>> seen;
+  for (size_t k = 1; k < drawn.size(); ++k) {  // 3 px in: only the block's inner 4 x 2 pixels
+    const int x = int(drawn[k].x), y = int(drawn[k].y);
+    EXPECT_TRUE(x >= 13 && x <= 16 && y >= 9 && y <= 10) << x << "," << y;
+    seen.insert({x, y});
+  }
+  EXPECT_GT(seen.size(), 4u);  // spread over them, not one pixel
+  const std::vector<Click> again = clicks_drawn_on(mask, "task", own, 40, 3);
+  for (size_t k = 0; k < drawn.size(); ++k) EXPECT_EQ(drawn[k].x, again[k].x);
+  const std::vector<Click> other = clicks_drawn_on(mask, "another task", own, 40, 3);
+  bool differs = false;
+  for (size_t k = 1; k < drawn.size(); ++k) differs |= drawn[k].x != other[k].x || drawn[k].y != other[k].y;
+  EXPECT_TRUE(differs);
+  EXPECT_EQ(clicks_drawn_on(mask, "task", own, 5, 5).size(), 1u);  // no pixel 5 px in: the own click alone
 }
 
 }  // namespace
