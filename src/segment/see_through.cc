@@ -9,38 +9,34 @@ namespace {
 
 class FirstSurface : public ContributionVisitor {
  public:
-  FirstSurface(const GaussianScene& scene, const Camera& camera, Image& out)
-      : scene_(scene), camera_(camera), out_(out), accumulated_(size_t(out.width) * out.height, 0.f) {}
+  // `probe`: a pixel (y * width + x) whose contributions up to its surface are kept.
+  FirstSurface(const GaussianScene& scene, const Camera& camera, Image& out, int64_t probe = -1)
+      : scene_(scene), camera_(camera), out_(out), accumulated_(size_t(out.width) * out.height, 0.f), probe_(probe) {}
   void visit(int, int x, int y, uint32_t g, float weight) override {
-    float& a = accumulated_[size_t(y) * out_.width + x];
+    const size_t i = size_t(y) * out_.width + x;
+    float& a = accumulated_[i];
     if (a >= 0.5f) return;
     a += weight;
-    if (a >= 0.5f) {
-      const Vec3 p{scene_.positions[3 * g], scene_.positions[3 * g + 1], scene_.positions[3 * g + 2]};
-      out_.at(x, y) = float(camera_.world_to_camera(p).z);
-    }
+    const bool probed = int64_t(i) == probe_;
+    if (!probed && a < 0.5f) return;
+    const Vec3 p{scene_.positions[3 * g], scene_.positions[3 * g + 1], scene_.positions[3 * g + 2]};
+    const float z = float(camera_.world_to_camera(p).z);
+    if (probed) probed_.push_back({z, weight});
+    if (a >= 0.5f) out_.at(x, y) = z;
   }
+  // The probed pixel's (depth, weight) contributions in blending order, up to its surface.
+  const std::vector<std::pair<float, float>>& probed() const { return probed_; }
 
  private:
   const GaussianScene& scene_;
   const Camera& camera_;
   Image& out_;
   std::vector<float> accumulated_;  // each pixel is visited by one worker only (its tile's)
+  int64_t probe_;
+  std::vector<std::pair<float, float>> probed_;
 };
 
 }  // namespace
-
-Image surface_depth(const GaussianScene& scene, const PreparedFrame& frame, const std::vector<uint8_t>* tiles,
-                    int threads) {
-  Image out(frame.camera.width, frame.camera.height, 1);
-  FirstSurface visitor(scene, frame.camera, out);
-  RenderSettings s;
-  s.color = false;
-  s.depth = false;
-  s.threads = threads;
-  rasterize(frame, s, nullptr, &visitor, tiles);
-  return out;
-}
 
 Occluders find_occluders(const GaussianScene& scene, const PreparedFrame& frame, double x, double y,
                          const SeeThroughOptions& o, int threads) {
@@ -56,11 +52,17 @@ Occluders find_occluders(const GaussianScene& scene, const PreparedFrame& frame,
   std::vector<uint8_t> tiles(size_t(frame.grid_x) * frame.grid_y, 0);
   for (int ty = y0 / kTileSize; ty <= y1 / kTileSize && ty < frame.grid_y; ++ty)
     for (int tx = x0 / kTileSize; tx <= x1 / kTileSize && tx < frame.grid_x; ++tx) tiles[size_t(ty) * frame.grid_x + tx] = 1;
-  const Image z = surface_depth(scene, frame, &tiles, threads);
+  Image z(w, h, 1);
+  FirstSurface visitor(scene, frame.camera, z, int64_t(cy) * w + cx);
+  RenderSettings rs;
+  rs.color = rs.depth = false;
+  rs.threads = threads;
+  rasterize(frame, rs, nullptr, &visitor, &tiles);
   const double d0 = z.at(cx, cy);
   if (!(d0 > 0)) return out;  // nothing solid clicked
   out.surface = d0;
   const double front = d0 * (1 - o.gap), back = d0 * (1 + o.band);
+  for (const auto& [depth, weight] : visitor.probed()) out.click_front_weight += depth < front ? weight : 0.f;
   auto is_surface = [&](int xx, int yy) {
     const float v = z.at(xx, yy);
     return v >= front && v <= back;
@@ -96,6 +98,11 @@ Occluders find_occluders(const GaussianScene& scene, const PreparedFrame& frame,
     }
   out.share = pixels ? double(occluding) / pixels : 0.0;
   if (out.share < o.min_share) return out;
+  // The clicked pixel itself gives much of its weight to something nearer: it is no clear
+  // gap. On a coarse surface of few large Gaussians (a far pillar in a real capture) the
+  // surface's own nearer Gaussians do so, and they are flanked by its farther ones: a cut
+  // among them would peel the clicked object's front away.
+  if (out.click_front_weight > o.max_click_front_weight) return out;
   // Just behind the occluders (whose Gaussians have some thickness), well before the
   // clicked surface, so the object's own nearer parts stay.
   out.cut = nearest_behind + 0.3 * (d0 - nearest_behind);

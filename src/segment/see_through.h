@@ -22,6 +22,9 @@ struct SeeThroughOptions {
   double band = 0.15;         // relative depth behind the clicked surface that still counts as it
   double min_share = 0.05;    // flanked occluder pixels needed, share of the window's pixels
   double max_in_mask = 0.5;   // no peeling when SAM's mask at the click already holds this share of them
+  // No peeling when the clicked pixel gives more than this blending weight to things nearer
+  // than its surface (a click through a gap sees the surface clearly: at most ~0.05 there).
+  double max_click_front_weight = 0.25;
 };
 
 struct Occluders {
@@ -29,16 +32,14 @@ struct Occluders {
   double cut = 0;        // camera-space depth just behind the occluders: render from here on
   double share = 0;      // share of the window's pixels that are flanked occluders
   double surface = 0;    // depth of the clicked surface
+  double click_front_weight = 0;  // the clicked pixel's blending weight nearer than that surface
   std::vector<uint32_t> pixels;  // the flanked occluder pixels (y * width + x)
 };
 
-// Depth of the first surface per pixel: the centre depth of the Gaussian at which the
-// accumulated blending weight reaches 0.5 (0 where it never does). Unlike the expected
-// depth it does not blend a bar's edge with the wall behind it. `tiles` limits the work.
-Image surface_depth(const GaussianScene& scene, const PreparedFrame& frame, const std::vector<uint8_t>* tiles,
-                    int threads = 0);
-
-// Looks for flanked occluders around continuous pixel (x, y) of a prepared view.
+// Looks for flanked occluders around continuous pixel (x, y) of a prepared view. A pixel's
+// surface is the centre depth of the Gaussian at which its accumulated blending weight
+// reaches 0.5 (none where it never does): unlike the expected depth it does not blend a
+// bar's edge with the wall behind it.
 Occluders find_occluders(const GaussianScene& scene, const PreparedFrame& frame, double x, double y,
                          const SeeThroughOptions& options = {}, int threads = 0);
 

@@ -57,5 +57,23 @@ TEST(SeeThrough, NothingInFrontOrOnlyGroundBelowIsNoOccluder) {
   EXPECT_FALSE(o.found) << "share " << o.share;
 }
 
+TEST(SeeThrough, AClickedPixelHalfCoveredByTheNearerThingIsNoGap) {
+  // The bars of the first test, and a faint veil (a coarse surface's nearer Gaussians) over
+  // the clicked pixel only: the click sees its surface at 4.0 through ~45 % of nearer weight.
+  Splats s;
+  s.sheet(-1, 1, -1, 1, 4.0);
+  for (double x = -0.9; x <= 0.9; x += 0.3) s.sheet(x, x + 0.08, -1, 1, 3.8);
+  const double x = 80 + 0.15 / 4.0 * kCamera.fx;
+  const Occluders clear = find_occluders(s.scene, prepare_frame(s.scene, kCamera), x, 80.5);
+  ASSERT_TRUE(clear.found);
+  EXPECT_LT(clear.click_front_weight, 0.05);  // through a gap: the surface seen clearly
+  s.add(0.15 * 3.9 / 4.0, 0, 3.9, 0.05);
+  s.scene.opacity.back() = -0.2f;  // alpha ~0.45 at its centre
+  const Occluders veiled = find_occluders(s.scene, prepare_frame(s.scene, kCamera), x, 80.5);
+  EXPECT_NEAR(veiled.surface, 4.0, 0.02);
+  EXPECT_GT(veiled.click_front_weight, 0.3);
+  EXPECT_FALSE(veiled.found);
+}
+
 }  // namespace
 }  // namespace isegman::segment
