@@ -73,6 +73,9 @@ TEST(SeeThrough, AClickedPixelHalfCoveredByTheNearerThingIsNoGap) {
   EXPECT_NEAR(veiled.surface, 4.0, 0.02);
   EXPECT_GT(veiled.click_front_weight, 0.3);
   EXPECT_FALSE(veiled.found);
+  SeeThroughOptions any_weight;  // the bars are still there: only the veil stops the peel
+  any_weight.max_click_front_weight = 1;
+  EXPECT_TRUE(find_occluders(s.scene, prepare_frame(s.scene, kCamera), x, 80.5, any_weight).found);
 }
 
 }  // namespace
