@@ -267,9 +267,31 @@ int run_eval_ablation(const Args& args) {
     double miou = 0, macc = 0, ms = 0, worst = 1;
     std::vector<double> per, per_worst, per_own;
     std::vector<std::vector<double>> per_after(static_cast<size_t>(corrective + 1));  // [k]: after k + 1 clicks
+    // One task's clicks, scored one by one (the first is its own), then its mean into the row.
+    struct TaskClicks {
+      double iou = 0, acc = 0, ms = 0, worst = 1;
+      int n = 0;
+    };
+    auto add_click = [&](TaskClicks& tc, double iou, double acc, double click_ms) {
+      if (tc.n == 0) per_own.push_back(iou);
+      tc.iou += iou;
+      tc.acc += acc;
+      tc.ms += click_ms;
+      tc.worst = std::min(tc.worst, iou);
+      ++tc.n;
+    };
+    auto close_task = [&](const TaskClicks& tc) {
+      const double n = double(tc.n), iou = tc.iou / n;
+      per.push_back(iou);
+      per_worst.push_back(tc.worst);
+      miou += iou;
+      macc += tc.acc / n;
+      worst = std::min(worst, iou);
+      ms += tc.ms / n;
+    };
     for (size_t ti = 0; ti < tasks.size(); ++ti) {
       const auto& [s, t] = tasks[ti];
-      double iou = 0, acc = 0, task_ms = 0, task_worst = 1;
+      TaskClicks tc;
       for (size_t k = 0; k < clicks_of[ti].size(); ++k) {
         segment::PipelineTimings tm;
         std::vector<Click> clicks{clicks_of[ti][k]};
@@ -295,52 +317,31 @@ int run_eval_ablation(const Args& args) {
             for (int later = c + 1; later <= corrective; ++later) per_after[size_t(later)].back() = sc.iou;
           }
         }
-        iou += sc.iou;
-        acc += sc.accuracy;
-        task_ms += tm.ms_interaction();
-        task_worst = std::min(task_worst, sc.iou);
-        if (k == 0) per_own.push_back(sc.iou);
+        add_click(tc, sc.iou, sc.accuracy, tm.ms_interaction());
         if (!overlays.empty() && ci == 0) {  // the first configuration's evidence, per task (and click) and view
           std::string name = s->name + "_" + s->scene.objects[size_t(t->object)].name;
           if (k > 0) name += "_click" + std::to_string(k);
           write_overlays(*session, name);
         }
       }
-      const double n = double(clicks_of[ti].size());
-      iou /= n;
-      per.push_back(iou);
-      per_worst.push_back(task_worst);
-      miou += iou;
-      macc += acc / n;
-      worst = std::min(worst, iou);
-      ms += task_ms / n;
+      close_task(tc);
     }
     for (size_t fi = 0; fi < fixture_tasks.size(); ++fi) {
       const segment::EvalTask& t = fixture_tasks[fi];
       const SceneBundle& b = fixture_scenes.at(t.scene_dir);
       const Camera* cam = find_camera(b.cameras, t.view);
       if (!cam) throw Error(t.dir + "/prompts.json", "view '" + t.view + "' is not a camera of the scene");
-      double iou = 0, acc = 0, task_ms = 0, task_worst = 1;
+      TaskClicks tc;
       const std::vector<std::vector<Click>>& prompts = fixture_prompts[fi];
       for (size_t k = 0; k < prompts.size(); ++k) {
         segment::PipelineTimings tm;
         auto session = segment::segment_from_prompts(b, int(cam - b.cameras.data()), prompts[k], sam, so, setup.views,
                                                      setup.views_spec, &tm);
         const segment::TaskResult r = segment::score_task(t, b, session->selection(), so.threads);
-        iou += r.iou;
-        acc += r.accuracy;
-        task_ms += tm.ms_interaction();
-        task_worst = std::min(task_worst, r.iou);
-        if (k == 0) per_own.push_back(r.iou);
+        add_click(tc, r.iou, r.accuracy, tm.ms_interaction());
         if (!overlays.empty() && ci == 0) write_overlays(*session, k ? t.name + "_click" + std::to_string(k) : t.name);
       }
-      const double n = double(prompts.size());
-      per.push_back(iou / n);
-      per_worst.push_back(task_worst);
-      miou += iou / n;
-      macc += acc / n;
-      worst = std::min(worst, iou / n);
-      ms += task_ms / n;
+      close_task(tc);
     }
     const double k = double(tasks.size() + fixture_tasks.size());
     std::printf("| %s | %.2f | %.1f | %.2f | %.2f s |", configs[ci].label.c_str(), 100 * miou / k, 100 * worst,
