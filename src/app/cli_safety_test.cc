@@ -15,6 +15,7 @@
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
+#include "core/test_dirs.h"
 
 namespace fs = std::filesystem;
 
@@ -49,8 +50,7 @@ std::string slurp(const std::string& p) {
 
 // <root>/scene (trainer layout, 3 cameras named by `names`) and <root>/scene/images/<name>.png.
 std::string make_scene(const std::string& name, const std::vector<std::string>& names) {
-  const fs::path root = fs::temp_directory_path() / ("isegman-cli-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(root);
+  const fs::path root = isegman::testing::fresh_temp_dir("isegman-cli-", name);
   fs::create_directories(root / "scene" / "images");
   DemoSceneOptions o;
   o.cameras = int(names.size());

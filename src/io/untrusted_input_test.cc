@@ -14,6 +14,7 @@
 #include "io/camera_test_util.h"
 #include "io/cameras_json.h"
 #include "io/ply.h"
+#include "core/test_dirs.h"
 
 namespace fs = std::filesystem;
 
@@ -22,8 +23,7 @@ namespace {
 using testing::make_rig;
 
 std::string temp_file(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("isegman-untrusted-" + std::to_string(::getpid()));
-  fs::create_directories(d);
+  static const fs::path d = isegman::testing::fresh_temp_dir("isegman-untrusted", "");
   return (d / name).string();
 }
 

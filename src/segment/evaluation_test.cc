@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
+#include "core/test_dirs.h"
 
 namespace fs = std::filesystem;
 
@@ -27,10 +28,7 @@ TEST(Evaluation, ScoresMasksByHand) {
 }
 
 fs::path temp_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / (name + "-" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return isegman::testing::fresh_temp_dir(name, "");
 }
 
 TEST(Evaluation, TaskLayoutErrorsNameTheFile) {
