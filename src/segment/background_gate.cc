@@ -434,6 +434,21 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
   return out;
 }
 
+namespace {
+// Whether a click's rendered depth lies on or behind the surroundings' rendered surface at
+// its pixel (both as rendered, so no offset between them): a coarse pillar running from the
+// floor to the ceiling around it, clicked where no Gaussian is centred near the click.
+bool clicked_pixel_in_or_behind(const BackgroundTarget& target, const Image& background, double tolerance) {
+  for (const BackgroundTarget::Seed& seed : target.seeds) {
+    const int x = int(seed.x), y = int(seed.y);
+    if (seed.depth <= 0 || x < 0 || y < 0 || x >= background.width || y >= background.height) continue;
+    const float bg = background.at(x, y);
+    if (bg > 0 && (1.0 / seed.depth) / bg - 1 <= tolerance) return true;
+  }
+  return false;
+}
+}  // namespace
+
 size_t gate_background(const GaussianScene& scene, const Camera& camera, const Image& background,
                        const BackgroundTarget& target, ViewVotes& positive, ViewVotes& neutral,
                        const BackgroundOptions& o, int threads, const SurroundingsSurface& surface) {
@@ -503,6 +518,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   // wheels), else the selection.
   const bool by_seeds = at_seeds > 0;
   if (moved.index.empty() || (by_seeds && at_seeds_moved > 0.5 * at_seeds) ||
+      (!by_seeds && clicked_pixel_in_or_behind(target, background, tolerance)) ||
       (!by_seeds && selected > 0 && selected_moved > 0.5 * selected))
     return 0;
   // Merge into `neutral`, keeping it ascending.

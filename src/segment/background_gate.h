@@ -88,6 +88,7 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
 struct BackgroundTarget {
   struct Seed {
     double x = 0, y = 0;  // continuous pixel coordinates (core/click.h)
+    double depth = 0;     // the view's rendered depth there (0: not known)
   };
   std::vector<Seed> seeds;
   const std::vector<bool>* selection = nullptr;
@@ -98,7 +99,10 @@ struct BackgroundTarget {
 // moved when that would take the target itself: most of the weight of the Gaussians centred
 // within seed_radius of a click (the object is not told from the surroundings by depth
 // here), or, where the view has no click, more than half of the selection's weight in the
-// mask. Returns the number moved.
+// mask. Where a click has no Gaussian centred within seed_radius (a coarse target of a few
+// large Gaussians), its pixel tells instead: nothing is moved when its rendered depth lies
+// on or behind the surroundings' rendered surface there (within the tolerance). Returns the
+// number moved.
 // `threads` (0: every core) does not change the result.
 // `surface`: where the surroundings' Gaussians lie (surroundings_surface; default: on the
 // rendered surface, within the fixed tolerance).

@@ -233,6 +233,34 @@ TEST(BackgroundGate, NeverTakesTheClickedSurfaceOrMostOfTheSelection) {
   EXPECT_EQ(neutral.index, (std::vector<uint32_t>{0}));
 }
 
+TEST(BackgroundGate, NeverTakesAClickedSurfaceOnTheSurroundingsThatNoCentreLiesNear) {
+  // A coarse target (a far pillar of a few large Gaussians, running from the floor to the
+  // ceiling around it) may have no Gaussian centred within seed_radius of a click; the
+  // clicked pixel's rendered depth still says whether the target lies in front of the
+  // surroundings' surface.
+  GateScene s;
+  s.add(-0.2, -0.2, 5.0, 0.05, 0.05, 0.002);  // 0: lies in the surroundings' surface
+  s.add(0.2, -0.2, 4.0, 0.05, 0.05, 0.002);   // 1: 20 % nearer
+  const Image bg = background_inverse_depth(s.mask, s.depth, s.alpha, 3.8);
+  const double u = 32.5, v = 40.5;  // about 10 pixels below both centres
+  for (uint32_t g : {0u, 1u}) {
+    double gu, gv;
+    ASSERT_TRUE(s.cam.project(s.scene.position(g), gu, gv));
+    ASSERT_GT(std::abs(gv - v), 2 * BackgroundOptions().seed_radius);
+  }
+  ASSERT_GT(bg.at(int(u), int(v)), 0.f);
+  auto moved = [&](double clicked_depth) {
+    BackgroundTarget t;
+    t.seeds.push_back({u, v, clicked_depth});
+    ViewVotes positive = s.positive, neutral;
+    return gate_background(s.scene, s.cam, bg, t, positive, neutral);
+  };
+  EXPECT_EQ(moved(5.0), 0u);  // the clicked pixel on the surroundings' surface
+  EXPECT_EQ(moved(5.3), 0u);  // ... or behind it
+  EXPECT_EQ(moved(4.0), 1u);  // in front of it: the Gaussian lying in the surface goes
+  EXPECT_EQ(moved(0.0), 1u);  // its depth not known: the centres near the click alone decide
+}
+
 TEST(BackgroundGate, ATargetJustInFrontOfTheWallNarrowsTheTolerance) {
   // Slats 4 cm before a wall 5 m away: 0.8 % nearer in inverse depth, inside the fixed 1 %.
   GateScene s;

@@ -809,7 +809,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       const int x = std::clamp(int(c.x), 0, view.camera.width - 1), y = std::clamp(int(c.y), 0, view.camera.height - 1);
       if (view.alpha.at(x, y) > 0.5f && view.depth.at(x, y) > 0) {
         seeds.push_back(view.depth.at(x, y));
-        target.seeds.push_back({c.x, c.y});
+        target.seeds.push_back({c.x, c.y, view.depth.at(x, y)});
       }
     }
     if (o.depth_layers && !(first_whole_mask && !selection)) {
