@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace isegman::segment {
 
@@ -82,20 +83,39 @@ Occluders find_occluders(const GaussianScene& scene, const PreparedFrame& frame,
     }
     return a && b;
   };
-  int pixels = 0, occluding = 0;
-  double nearest_behind = 0;  // the deepest flanked occluder
+  int pixels = 0;
+  std::vector<std::pair<float, uint32_t>> flanked_pixels;  // (surface depth, y * width + x)
   for (int yy = std::max(0, cy - r); yy <= std::min(h - 1, cy + r); ++yy)
     for (int xx = std::max(0, cx - r); xx <= std::min(w - 1, cx + r); ++xx) {
       const float v = z.at(xx, yy);
       if (!(v > 0)) continue;
       ++pixels;
       if (v >= front) continue;
-      if (flanked(xx, yy, 1, 0) || flanked(xx, yy, 0, 1)) {
-        ++occluding;
-        out.pixels.push_back(uint32_t(yy) * uint32_t(w) + uint32_t(xx));
-        nearest_behind = std::max(nearest_behind, double(v));
+      if (flanked(xx, yy, 1, 0) || flanked(xx, yy, 0, 1))
+        flanked_pixels.push_back({v, uint32_t(yy) * uint32_t(w) + uint32_t(xx)});
+    }
+  // The occluders end at the widest relative depth gap among the flanked pixels and the
+  // clicked surface, one leaving at least min_share of the window's pixels in front: beyond
+  // a wider gap than the one to the surface, flanked pixels are the clicked surface's own
+  // nearer parts (a coarse pillar's Gaussians scattered a few per cent in depth, crossed by
+  // fronds far in front of it), not occluders.
+  std::sort(flanked_pixels.begin(), flanked_pixels.end());
+  const size_t n = flanked_pixels.size();
+  const size_t min_count = std::max<size_t>(1, size_t(std::ceil(o.min_share * pixels)));
+  size_t occluding = n;
+  if (n > 0) {
+    double widest = (d0 - flanked_pixels[n - 1].first) / d0;
+    for (size_t k = min_count; k < n; ++k) {
+      const double gap = double(flanked_pixels[k].first - flanked_pixels[k - 1].first) / flanked_pixels[k].first;
+      if (gap > widest) {
+        widest = gap;
+        occluding = k;
       }
     }
+  }
+  const double nearest_behind = occluding > 0 ? flanked_pixels[occluding - 1].first : 0;  // the deepest occluder
+  const double surface_front = occluding < n ? double(flanked_pixels[occluding].first) : d0;
+  for (size_t k = 0; k < occluding; ++k) out.pixels.push_back(flanked_pixels[k].second);
   out.share = pixels ? double(occluding) / pixels : 0.0;
   if (out.share < o.min_share) return out;
   // The clicked pixel itself gives much of its weight to something nearer: it is no clear
@@ -105,7 +125,7 @@ Occluders find_occluders(const GaussianScene& scene, const PreparedFrame& frame,
   if (out.click_front_weight > o.max_click_front_weight) return out;
   // Just behind the occluders (whose Gaussians have some thickness), well before the
   // clicked surface, so the object's own nearer parts stay.
-  out.cut = nearest_behind + 0.3 * (d0 - nearest_behind);
+  out.cut = nearest_behind + 0.3 * (surface_front - nearest_behind);
   out.found = true;
   return out;
 }

@@ -39,7 +39,10 @@ struct Occluders {
 // Looks for flanked occluders around continuous pixel (x, y) of a prepared view. A pixel's
 // surface is the centre depth of the Gaussian at which its accumulated blending weight
 // reaches 0.5 (none where it never does): unlike the expected depth it does not blend a
-// bar's edge with the wall behind it.
+// bar's edge with the wall behind it. The occluders end at the widest relative depth gap
+// among the flanked pixels and the clicked surface (one leaving at least min_share of the
+// window in front): flanked pixels beyond a wider gap than the one to the surface are that
+// surface's own nearer parts, and the cut falls before them.
 Occluders find_occluders(const GaussianScene& scene, const PreparedFrame& frame, double x, double y,
                          const SeeThroughOptions& options = {}, int threads = 0);
 

@@ -42,6 +42,24 @@ TEST(SeeThrough, BarsInFrontOfTheClickedSurfaceAreFoundAndCutBehind) {
   EXPECT_LT(o.cut, 4.0);  // ... in front of the object
 }
 
+TEST(SeeThrough, TheClickedSurfacesOwnNearerPartsStayBehindTheCut) {
+  // A coarse surface (a far pillar of a few large Gaussians) has parts a few per cent nearer
+  // than where it is clicked, flanked by it like an occluder: strips at 3.90 and 3.85 before
+  // the surface at 4.0. The occluders proper, bars at 3.0, lie beyond a wider gap; the cut
+  // falls behind them and before the strips, so those stay in the peeled render.
+  Splats s;
+  s.sheet(-1, 1, -1, 1, 4.0);
+  for (double x = -0.9; x <= 0.9; x += 0.3) s.sheet(x, x + 0.08, -1, 1, 3.0);
+  s.sheet(0.22, 0.27, -1, 1, 3.9, 0.01);
+  s.sheet(-0.1, -0.05, -1, 1, 3.85, 0.01);
+  const double x = 80 + 0.15 / 4.0 * kCamera.fx;
+  const Occluders o = find_occluders(s.scene, prepare_frame(s.scene, kCamera), x, 80.5);
+  ASSERT_TRUE(o.found) << "share " << o.share;
+  EXPECT_NEAR(o.surface, 4.0, 0.02);
+  EXPECT_GT(o.cut, 3.0);
+  EXPECT_LT(o.cut, 3.85);
+}
+
 TEST(SeeThrough, NothingInFrontOrOnlyGroundBelowIsNoOccluder) {
   Splats open;
   open.sheet(-1, 1, -1, 1, 4.0);
