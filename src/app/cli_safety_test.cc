@@ -12,10 +12,10 @@
 
 #include "app/demo_scene.h"
 #include "core/selection.h"
+#include "core/test_dirs.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
-#include "core/test_dirs.h"
 
 namespace fs = std::filesystem;
 

@@ -9,12 +9,12 @@
 
 #include "core/error.h"
 #include "core/scene.h"
+#include "core/test_dirs.h"
 #include "io/atomic_file.h"
 #include "io/camera_loader.h"
 #include "io/camera_test_util.h"
 #include "io/cameras_json.h"
 #include "io/ply.h"
-#include "core/test_dirs.h"
 
 namespace fs = std::filesystem;
 

@@ -7,9 +7,9 @@
 
 #include "app/demo_scene.h"
 #include "core/error.h"
+#include "core/test_dirs.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
-#include "core/test_dirs.h"
 
 namespace fs = std::filesystem;
 
