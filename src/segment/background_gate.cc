@@ -484,9 +484,10 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   // half the clicked Gaussians' (weighted median) offset, when that is at least min_tolerance
   // (a target lying in the surface, a poster on a wall, is not told from it by depth at all).
   double tolerance = surface.tolerance >= 0 ? surface.tolerance : o.tolerance;
+  std::sort(seed_offsets.begin(), seed_offsets.end());
+  const double seed_median = seed_offsets.empty() ? std::nan("") : weighted_quantile(seed_offsets, 0.5);
   if (!seed_offsets.empty() && o.min_tolerance > 0 && o.min_tolerance < tolerance) {
-    std::sort(seed_offsets.begin(), seed_offsets.end());
-    const double median = weighted_quantile(seed_offsets, 0.5);
+    const double median = seed_median;
     if (median >= 2 * o.min_tolerance && median <= tolerance) tolerance = 0.5 * median;
   }
   std::vector<uint8_t> behind_surface(n, 0);
@@ -497,10 +498,14 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
                                              pixel[2 * k + 1], o.min_alignment);
   });
   ViewVotes kept, moved;
-  double selected = 0, selected_moved = 0, at_seeds = 0, at_seeds_moved = 0;
+  double selected = 0, selected_moved = 0, at_seeds = 0, at_seeds_moved = 0, moved_weight = 0, far_weight = 0;
   for (size_t k = 0; k < n; ++k) {
     const uint32_t g = positive.index[k];
     const bool behind = behind_surface[k];
+    if (behind) {
+      moved_weight += double(positive.weight[k]);
+      if (offset[k] < -o.far_behind * tolerance) far_weight += double(positive.weight[k]);
+    }
     if (at_seed[k]) {
       at_seeds += double(positive.weight[k]);
       if (behind) at_seeds_moved += double(positive.weight[k]);
@@ -517,7 +522,12 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   // may already hold what an earlier view's gaps showed: the wall inside a bicycle's
   // wheels), else the selection.
   const bool by_seeds = at_seeds > 0;
-  if (moved.index.empty() || (by_seeds && at_seeds_moved > 0.5 * at_seeds) ||
+  // Far behind the surface lies either what a clearly nearer target's gaps show (a fence's
+  // pickets 14 % in front of it) or, where the clicked Gaussians lie near it or no Gaussian
+  // is centred at the clicks, the target itself.
+  const bool target_clearly_in_front = seed_median >= o.far_behind * tolerance;  // false for NaN
+  if (moved.index.empty() || (!target_clearly_in_front && far_weight > o.max_far_behind * moved_weight) ||
+      (by_seeds && at_seeds_moved > 0.5 * at_seeds) ||
       (!by_seeds && clicked_pixel_in_or_behind(target, background, tolerance)) ||
       (!by_seeds && selected > 0 && selected_moved > 0.5 * selected))
     return 0;

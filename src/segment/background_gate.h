@@ -42,6 +42,13 @@ struct BackgroundOptions {
   // degrees of the surface's (|cos| >= this); 0: depth alone decides.
   double min_alignment = 0.8;
   double seed_radius = 3;     // pixels around a click whose Gaussians are the target
+  // A background hides what lies behind it: when more than this share of the weight the gate
+  // would move lies over far_behind x the tolerance behind the estimate, and the clicked
+  // Gaussians do not lie clearly (far_behind x the tolerance) in front of it, the estimate
+  // runs through the target (a pillar from the floor to the ceiling around it) and nothing
+  // is moved (1: never). In front of a clearly nearer target (a fence) it is what the gaps show.
+  double max_far_behind = 1.0 / 3;
+  double far_behind = 3;
   double occluder_margin = 0.03;  // outside pixels nearer than the target's near depth less this share are occluders
   // Mask pixels no line estimates take the plane the samples around the mask lie on, where
   // at least plane_min_share of them do (RANSAC, plane_trials triples) on three of its sides.
@@ -101,8 +108,9 @@ struct BackgroundTarget {
 // here), or, where the view has no click, more than half of the selection's weight in the
 // mask. Where a click has no Gaussian centred within seed_radius (a coarse target of a few
 // large Gaussians), its pixel tells instead: nothing is moved when its rendered depth lies
-// on or behind the surroundings' rendered surface there (within the tolerance). Returns the
-// number moved.
+// on or behind the surroundings' rendered surface there (within the tolerance). Nor when
+// most of what would be moved lies far behind the surface and the clicked Gaussians do not
+// lie clearly in front of it (max_far_behind). Returns the number moved.
 // `threads` (0: every core) does not change the result.
 // `surface`: where the surroundings' Gaussians lie (surroundings_surface; default: on the
 // rendered surface, within the fixed tolerance).

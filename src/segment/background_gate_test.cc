@@ -261,6 +261,37 @@ TEST(BackgroundGate, NeverTakesAClickedSurfaceOnTheSurroundingsThatNoCentreLiesN
   EXPECT_EQ(moved(0.0), 1u);  // its depth not known: the centres near the click alone decide
 }
 
+TEST(BackgroundGate, StandsAsideWhenMostOfWhatItWouldMoveLiesFarBehindTheSurface) {
+  // A background hides what lies behind it. A pillar running from the floor to the ceiling
+  // around it has the surroundings' surface interpolated through it: its clicked front lies
+  // just in front of that surface, much of the rest far behind it, which no real background
+  // would let through. Behind a clearly nearer target (a fence's pickets) it is what the
+  // gaps show.
+  auto moved = [](double clicked_depth, int on_surface, int far_behind, const BackgroundOptions& o) {
+    GateScene s;
+    s.add(0.2, -0.2, clicked_depth, 0.03, 0.03, 0.03);  // 0: the clicked front
+    for (int i = 0; i < on_surface; ++i) s.add(-0.3 + 0.1 * i, -0.2, 5.0, 0.03, 0.03, 0.002);
+    for (int i = 0; i < far_behind; ++i) s.add(-0.3 + 0.1 * i, 0.2, 5.6, 0.03, 0.03, 0.03);  // 11 % behind
+    const Image bg = background_inverse_depth(s.mask, s.depth, s.alpha, 3.8);
+    double u, v;
+    EXPECT_TRUE(s.cam.project({0.2, -0.2, clicked_depth}, u, v));
+    BackgroundTarget clicked;
+    clicked.seeds.push_back({u, v});
+    ViewVotes positive = s.positive, neutral;
+    return gate_background(s.scene, s.cam, bg, clicked, positive, neutral, o);
+  };
+  const BackgroundOptions o;
+  const double pillar = 4.9;  // 2 % in front: outside the tolerance, not clearly in front
+  EXPECT_EQ(moved(pillar, 3, 0, o), 3u);  // a wall seen through gaps
+  EXPECT_EQ(moved(pillar, 3, 1, o), 4u);  // ... and a little seen far behind it: still a background
+  EXPECT_EQ(moved(pillar, 1, 2, o), 0u);  // mostly far behind: the estimate runs through the target
+  EXPECT_EQ(moved(pillar, 0, 3, o), 0u);
+  EXPECT_EQ(moved(4.0, 1, 2, o), 3u);     // a front 20 % nearer: its gaps show them
+  BackgroundOptions off;
+  off.max_far_behind = 1;
+  EXPECT_EQ(moved(pillar, 1, 2, off), 3u);  // the rule off
+}
+
 TEST(BackgroundGate, ATargetJustInFrontOfTheWallNarrowsTheTolerance) {
   // Slats 4 cm before a wall 5 m away: 0.8 % nearer in inverse depth, inside the fixed 1 %.
   GateScene s;

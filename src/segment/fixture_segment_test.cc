@@ -77,6 +77,10 @@ TEST(FernFixture, OneClickOnThePlantLeavesOutWhatShowsBehindItsFronds) {
 // flanked pixels include those nearer Gaussians. Either way see-through cut among them and
 // peeled the pillar's front away (IoU 0.02 and 0.585); the front-weight guard stops the
 // first peel, and the cut at the widest depth gap (behind the fronds) mends the second.
+// The pillar stands from the floor to the ceiling around it, so the surroundings' surface
+// interpolated across its mask runs through it: at (465, 219) and (465, 158) the background
+// gate set aside the pillar's Gaussians behind that surface (IoU 0.680 each) until it stood
+// aside where most of what it would move lies far behind the surface.
 TEST(FernFixture, ClicksOnTheFarPillarsCoarseSurfaceDoNotPeelItAway) {
   const fs::path scene = fs::path(ISEGMAN_FIXTURES_DIR) / "fern/scene";
   if (!fs::exists(scene)) GTEST_SKIP() << "fixtures not found at " << scene << "; skipping real-data test";
@@ -91,10 +95,12 @@ TEST(FernFixture, ClicksOnTheFarPillarsCoarseSurfaceDoNotPeelItAway) {
                                         view_options(), "auto");
     return score_task(task, b, session->selection()).iou;
   };
-  const double veiled = score(465, 219), clear = score(475, 209);
-  std::printf("[ fern pillar ] click (465, 219): IoU %.3f; click (475, 209): IoU %.3f\n", veiled, clear);
-  EXPECT_GT(veiled, 0.6);
+  const double veiled = score(465, 219), clear = score(475, 209), upper = score(465, 158);
+  std::printf("[ fern pillar ] click (465, 219): IoU %.3f; (475, 209): %.3f; (465, 158): %.3f\n", veiled, clear,
+              upper);
+  EXPECT_GT(veiled, 0.75);
   EXPECT_GT(clear, 0.75);
+  EXPECT_GT(upper, 0.75);
 }
 
 }  // namespace
