@@ -115,6 +115,7 @@ int run_eval_ablation(const Args& args) {
       {"- band beyond the part", [](segment::SessionOptions& o) { o.beyond_part.band = false; }},
       {"- mask beyond the part", [](segment::SessionOptions& o) { o.beyond_part.whole = false; }},
       {"- attached parts", [](segment::SessionOptions& o) { o.attached_parts.enabled = false; }},
+      {"- far-behind check", [](segment::SessionOptions& o) { o.background_options.max_far_behind = 1; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

@@ -32,6 +32,9 @@ const char* const kSegmentOptionsHelp =
     "  --rendered-surface            the background gate measures from the rendered surface with a\n"
     "                                fixed tolerance (default: from where the surroundings' Gaussians\n"
     "                                lie, as tight as their scatter)\n"
+    "  --no-far-behind-check         the background gate runs even where most of what it would set\n"
+    "                                aside lies far behind the surroundings' surface (default: it then\n"
+    "                                stands aside: that surface runs through the target)\n"
     "  --keep-whole-islands          keep what only the part/whole rule selects even where it does not\n"
     "                                touch the rest of the selection (default: such islands, a\n"
     "                                neighbour SAM merged in some views, are dropped)\n"
@@ -93,7 +96,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "keep-whole-islands", "no-attached-parts", "keep-beyond-part", "no-negative-islands",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "no-far-behind-check", "keep-whole-islands", "no-attached-parts", "keep-beyond-part", "no-negative-islands",
                                           "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives", "sam-all-clicks", "no-negative-granularity"};
   return f;
@@ -125,6 +128,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.background_options.plane = !args.has("no-background-plane");
   s.session.background_against = !args.has("background-neutral");
   if (args.has("rendered-surface")) s.session.background_options.spread_scale = 0;
+  if (args.has("no-far-behind-check")) s.session.background_options.max_far_behind = 1;
   s.session.whole_islands.enabled = !args.has("keep-whole-islands");
   s.session.attached_parts.enabled = !args.has("no-attached-parts");
   s.session.beyond_part.band = s.session.beyond_part.whole = !args.has("keep-beyond-part");
