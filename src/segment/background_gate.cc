@@ -483,13 +483,16 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   // ~0.8 % nearer in inverse depth) would count as lying on it: the tolerance shrinks to
   // half the clicked Gaussians' (weighted median) offset, when that is at least min_tolerance
   // (a target lying in the surface, a poster on a wall, is not told from it by depth at all).
-  double tolerance = surface.tolerance >= 0 ? surface.tolerance : o.tolerance;
+  const double surroundings_tolerance = surface.tolerance >= 0 ? surface.tolerance : o.tolerance;
+  double tolerance = surroundings_tolerance;
   std::sort(seed_offsets.begin(), seed_offsets.end());
   const double seed_median = seed_offsets.empty() ? std::nan("") : weighted_quantile(seed_offsets, 0.5);
-  if (!seed_offsets.empty() && o.min_tolerance > 0 && o.min_tolerance < tolerance) {
-    const double median = seed_median;
-    if (median >= 2 * o.min_tolerance && median <= tolerance) tolerance = 0.5 * median;
-  }
+  if (!seed_offsets.empty() && o.min_tolerance > 0 && o.min_tolerance < tolerance &&
+      seed_median >= 2 * o.min_tolerance && seed_median <= tolerance)
+    tolerance = 0.5 * seed_median;
+  // "Far" behind is measured against how the surroundings' Gaussians scatter, not against a
+  // tolerance narrowed to a target just in front of them.
+  const double far = o.far_behind * surroundings_tolerance;
   std::vector<uint8_t> behind_surface(n, 0);
   parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k)
@@ -504,7 +507,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
     const bool behind = behind_surface[k];
     if (behind) {
       moved_weight += double(positive.weight[k]);
-      if (offset[k] < -o.far_behind * tolerance) far_weight += double(positive.weight[k]);
+      if (offset[k] < -far) far_weight += double(positive.weight[k]);
     }
     if (at_seed[k]) {
       at_seeds += double(positive.weight[k]);
@@ -525,7 +528,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   // Far behind the surface lies either what a clearly nearer target's gaps show (a fence's
   // pickets 14 % in front of it) or, where the clicked Gaussians lie near it or no Gaussian
   // is centred at the clicks, the target itself.
-  const bool target_clearly_in_front = seed_median >= o.far_behind * tolerance;  // false for NaN
+  const bool target_clearly_in_front = seed_median >= far;  // false for NaN
   if (moved.index.empty() || (!target_clearly_in_front && far_weight > o.max_far_behind * moved_weight) ||
       (by_seeds && at_seeds_moved > 0.5 * at_seeds) ||
       (!by_seeds && clicked_pixel_in_or_behind(target, background, tolerance)) ||

@@ -43,10 +43,11 @@ struct BackgroundOptions {
   double min_alignment = 0.8;
   double seed_radius = 3;     // pixels around a click whose Gaussians are the target
   // A background hides what lies behind it: when more than this share of the weight the gate
-  // would move lies over far_behind x the tolerance behind the estimate, and the clicked
-  // Gaussians do not lie clearly (far_behind x the tolerance) in front of it, the estimate
-  // runs through the target (a pillar from the floor to the ceiling around it) and nothing
-  // is moved (1: never). In front of a clearly nearer target (a fence) it is what the gaps show.
+  // would move lies over far_behind x the tolerance (before it is narrowed to the clicked
+  // Gaussians) behind the estimate, and the clicked Gaussians do not lie clearly (as far) in
+  // front of it, the estimate runs through the target (a pillar from the floor to the ceiling
+  // around it) and nothing is moved (1: never). Behind a clearly nearer target (a fence) it
+  // is what the gaps show.
   double max_far_behind = 1.0 / 3;
   double far_behind = 3;
   double occluder_margin = 0.03;  // outside pixels nearer than the target's near depth less this share are occluders

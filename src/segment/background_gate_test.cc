@@ -267,11 +267,12 @@ TEST(BackgroundGate, StandsAsideWhenMostOfWhatItWouldMoveLiesFarBehindTheSurface
   // just in front of that surface, much of the rest far behind it, which no real background
   // would let through. Behind a clearly nearer target (a fence's pickets) it is what the
   // gaps show.
-  auto moved = [](double clicked_depth, int on_surface, int far_behind, const BackgroundOptions& o) {
+  auto moved = [](double clicked_depth, int on_surface, int far_behind, const BackgroundOptions& o,
+                  double behind_depth = 5.6) {  // 11 % behind
     GateScene s;
     s.add(0.2, -0.2, clicked_depth, 0.03, 0.03, 0.03);  // 0: the clicked front
     for (int i = 0; i < on_surface; ++i) s.add(-0.3 + 0.1 * i, -0.2, 5.0, 0.03, 0.03, 0.002);
-    for (int i = 0; i < far_behind; ++i) s.add(-0.3 + 0.1 * i, 0.2, 5.6, 0.03, 0.03, 0.03);  // 11 % behind
+    for (int i = 0; i < far_behind; ++i) s.add(-0.3 + 0.1 * i, 0.2, behind_depth, 0.03, 0.03, 0.03);
     const Image bg = background_inverse_depth(s.mask, s.depth, s.alpha, 3.8);
     double u, v;
     EXPECT_TRUE(s.cam.project({0.2, -0.2, clicked_depth}, u, v));
@@ -287,6 +288,9 @@ TEST(BackgroundGate, StandsAsideWhenMostOfWhatItWouldMoveLiesFarBehindTheSurface
   EXPECT_EQ(moved(pillar, 1, 2, o), 0u);  // mostly far behind: the estimate runs through the target
   EXPECT_EQ(moved(pillar, 0, 3, o), 0u);
   EXPECT_EQ(moved(4.0, 1, 2, o), 3u);     // a front 20 % nearer: its gaps show them
+  // Slats 0.8 % in front of a wall narrow the tolerance to 0.4 %; wall Gaussians 1.6 % behind
+  // its surface are far behind that, but not behind the wall's own tolerance (1 %) thrice.
+  EXPECT_EQ(moved(4.96, 1, 2, o, 5.08), 3u);
   BackgroundOptions off;
   off.max_far_behind = 1;
   EXPECT_EQ(moved(pillar, 1, 2, off), 3u);  // the rule off
