@@ -116,6 +116,7 @@ int run_eval_ablation(const Args& args) {
       {"- mask beyond the part", [](segment::SessionOptions& o) { o.beyond_part.whole = false; }},
       {"- attached parts", [](segment::SessionOptions& o) { o.attached_parts.enabled = false; }},
       {"- far-behind check", [](segment::SessionOptions& o) { o.background_options.max_far_behind = 1; }},
+      {"- minority granularity try", [](segment::SessionOptions& o) { o.larger_views_share = 1; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

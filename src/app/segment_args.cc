@@ -56,6 +56,9 @@ const char* const kSegmentOptionsHelp =
     "                                the agreeing candidate closest to it (off: it measured worse)\n"
     "  --no-granularity-consensus    keep the clicked view's mask even when most views segment a larger\n"
     "                                whole around it\n"
+    "  --larger-views-share S        granularity consensus tries the larger candidates when the views\n"
+    "                                that segment a larger whole outnumber S x the other accepted views\n"
+    "                                (default 0.5; 1: only when they outnumber them all)\n"
     "  --no-whole-mask-retry         in granularity consensus, do not try the clicked view's whole mask\n"
     "                                (every depth layer) when the depth gate kept little of it\n"
     "  --no-empty-selection-retry    do not try the clicked view's larger SAM candidates when its mask\n"
@@ -91,7 +94,7 @@ const char* const kSegmentOptionsHelp =
 
 const std::set<std::string>& segment_value_flags() {
   static const std::set<std::string> f = {"mode",     "views", "tau",   "min-weight",
-                                          "max-side", "sam",   "cache", "threads", "selection-prompts"};
+                                          "max-side", "sam",   "cache", "threads", "selection-prompts", "larger-views-share"};
   return f;
 }
 const std::set<std::string>& segment_switch_flags() {
@@ -137,6 +140,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.agreement_inspection = !args.has("overlap-inspection");
   s.session.choose_candidate = args.has("candidate-choice");
   s.session.granularity_consensus = !args.has("no-granularity-consensus");
+  s.session.larger_views_share = args.get_double("larger-views-share", s.session.larger_views_share);
   s.session.whole_mask_retry = !args.has("no-whole-mask-retry");
   s.session.empty_selection_retry = !args.has("no-empty-selection-retry");
   s.session.grow_to_selection = !args.has("no-grow-to-selection");

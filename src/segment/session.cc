@@ -1104,7 +1104,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     decide();
     const bool selects_nothing = o.empty_selection_retry && live.members().empty();
     const models::SegmentResult& r = *results[first_view];
-    if ((larger >= 2 && larger > rep.accepted - 1) || selects_nothing) {
+    if ((larger >= 2 && double(larger) > o.larger_views_share * double(rep.accepted - 1)) || selects_nothing) {
       const int used = fresh[first_view].candidate;
       const double first_gated = fresh[first_view].gated_share;
       const size_t used_area = mask_area(r.candidates[size_t(used)]);

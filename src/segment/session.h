@@ -74,6 +74,11 @@ struct SessionOptions {
   // area, predicted IoU >= min_granularity_score) and keep the one most views accept.
   bool granularity_consensus = true;
   double granularity_growth = 1.5, min_granularity_score = 0.5;
+  // "Most" above starts the try: the views holding the selection but far larger number more
+  // than this share of the other accepted views (1: more than all of them). The try itself
+  // keeps a larger candidate only where more views accept it, so a minority of such views
+  // (seven whole-screen masks against eight slats) may start it.
+  double larger_views_share = 0.5;
   // ... and, when the depth gate made at least whole_mask_gated_share of the first mask's
   // weight neutral, the first mask voting whole, every depth layer (a leaf at a hanging
   // plant's edge is a layer of its own). It also lets an occluder that most views mask win
