@@ -141,6 +141,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.choose_candidate = args.has("candidate-choice");
   s.session.granularity_consensus = !args.has("no-granularity-consensus");
   s.session.larger_views_share = args.get_double("larger-views-share", s.session.larger_views_share);
+  if (!(s.session.larger_views_share >= 0)) throw Error("--larger-views-share must be a number >= 0");
   s.session.whole_mask_retry = !args.has("no-whole-mask-retry");
   s.session.empty_selection_retry = !args.has("no-empty-selection-retry");
   s.session.grow_to_selection = !args.has("no-grow-to-selection");

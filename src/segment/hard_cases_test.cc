@@ -324,9 +324,9 @@ std::pair<Outcome, Outcome> with_and_without_object_prior(const std::string& nam
 TEST(HardCases, AMinorityOfViewsMaskingTheWholeScreenStillRetriesTheClickedGranularity) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // At 720x540 SAM's choice in the clicked view is one slat of the screen. Seven views mask
-  // the whole screen (dropped: far larger than the slat's selection), eight a slat. Seven is
-  // no majority of the accepted views, so the screen candidate was never tried. More than
-  // half as many now start the retry, and the pass with the screen is accepted by more views.
+  // the whole screen (dropped: far larger than the slat's selection), eight a slat. Seven did
+  // not outnumber the nine other accepted views, so the screen candidate was never tried. More
+  // than half as many now start the try, and the pass with the screen is accepted by more views.
   SessionOptions majority;
   majority.larger_views_share = 1.0;
   const auto [ours, without] = with_and_without("alcove/screen", majority, "a majority needed", kMid);
