@@ -77,7 +77,7 @@ struct SessionOptions {
   // "Most" above starts the try: the views holding the selection but far larger number more
   // than this share of the other accepted views (1: more than all of them). The try itself
   // keeps a larger candidate only where more views accept it, so a minority of such views
-  // (seven whole-screen masks against eight slats) may start it.
+  // (seven whole-screen masks against nine other accepted views) may start it.
   double larger_views_share = 0.5;
   // ... and, when the depth gate made at least whole_mask_gated_share of the first mask's
   // weight neutral, the first mask voting whole, every depth layer (a leaf at a hanging
