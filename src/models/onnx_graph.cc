@@ -11,10 +11,12 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <deque>
 #include <functional>
@@ -1108,6 +1110,13 @@ struct OnnxGraph::Impl {
     throw Error(model.path, s.str());
   }
 
+  // Runs the steps marked in run_step (all when null) over env, freeing each value after its
+  // last use unless marked in keep. `after` (optional) sees each step's outputs before that
+  // (and may mark more of keep); returning false stops the run, and run_steps returns false.
+  bool run_steps(std::vector<at::Tensor>& env, const std::vector<char>* run_step, const std::vector<char>* keep,
+                 const std::function<bool(size_t)>& after = nullptr) const;
+  std::map<std::string, HostTensor> outputs_of(const std::vector<at::Tensor>& env) const;
+
   void execute(const Node& n, const OpFn& fn, Ctx& ctx) const {
     try {
       fn(ctx);
@@ -1453,17 +1462,40 @@ std::vector<std::string> OnnxGraph::supported_ops() {
   return v;
 }
 
-std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, HostTensor>& feeds) const {
-  c10::InferenceMode guard;
-  const Impl& m = *impl_;
-  std::vector<at::Tensor> env = m.constants;
-  for (const auto& [name, s] : m.input_slots) {
-    auto it = feeds.find(name);
-    if (it == feeds.end()) throw Error(m.model.path, "input '" + name + "' was not given");
-    env[s] = to_aten(it->second);
-  }
-  for (const auto& [name, t] : feeds)
-    if (!m.slot_of.count(name)) throw Error(m.model.path, "the graph has no input named '" + name + "'");
+namespace {
+
+// Operators whose output is shape arithmetic when their inputs are: small integer values
+// derived from tensor shapes (an export's broadcasts and tiles are made of them).
+bool shape_arithmetic(const std::string& op) {
+  static const std::set<std::string> ops = {"Gather", "Unsqueeze", "Squeeze", "Concat", "Slice", "Cast", "Reshape",
+                                            "Equal", "Where", "Mul", "Add", "Sub", "Div", "OneHot", "ConstantOfShape",
+                                            "Range", "Not", "Less", "Greater", "ReduceProd", "Identity", "Max", "Min",
+                                            "Neg", "Floor", "Ceil"};
+  return ops.count(op) != 0;
+}
+
+bool same_value(const at::Tensor& a, const at::Tensor& b) {
+  if (!a.defined() || !b.defined()) return a.defined() == b.defined();
+  if (a.scalar_type() != b.scalar_type() || a.sizes() != b.sizes()) return false;
+  const at::Tensor ca = a.contiguous(), cb = b.contiguous();
+  return std::memcmp(ca.data_ptr(), cb.data_ptr(), size_t(ca.numel()) * ca.element_size()) == 0;
+}
+
+}  // namespace
+
+struct OnnxGraph::Stable {
+  const Impl* graph = nullptr;                     // the graph that made it
+  std::vector<std::pair<std::string, at::Tensor>> inputs;  // the stable inputs (the caller's bytes)
+  std::vector<char> done;                          // per step: computed here, skipped by run(feeds, stable)
+  std::vector<std::pair<int, at::Tensor>> values;  // the slots the other steps (or the outputs) read
+  // Shape arithmetic of the other inputs that the kept values were made with: per slot, the
+  // value it had; a later run that computes another value there runs the whole graph.
+  std::vector<std::pair<int, at::Tensor>> guards;
+  mutable std::atomic<size_t> whole_runs{0};
+};
+
+bool OnnxGraph::Impl::run_steps(std::vector<at::Tensor>& env, const std::vector<char>* run_step,
+                                const std::vector<char>* keep, const std::function<bool(size_t)>& after) const {
   // ISEGMAN_ONNX_PROFILE=1 prints the time spent per operator type after each run: wall
   // time and the process's CPU time (all threads; steadier than wall time on a shared machine).
   // ISEGMAN_ONNX_PROFILE=2 also prints every node with its input shapes and times.
@@ -1473,16 +1505,20 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
     int count = 0;
   };
   std::map<std::string, OpTime> by_op;
-  for (const auto& st : m.steps) {
-    Ctx ctx{*st.node, m.model.opset, {}, {}};
+  size_t ran = 0;
+  for (size_t i = 0; i < steps.size(); ++i) {
+    if (run_step && !(*run_step)[i]) continue;
+    const Step& st = steps[i];
+    ++ran;
+    Ctx ctx{*st.node, model.opset, {}, {}};
     ctx.in.reserve(st.in.size());
     for (int s : st.in) {
       if (s >= 0 && !env[s].defined())
-        m.fail(*st.node, "input '" + st.node->inputs[ctx.in.size()] + "' has no value", ctx.in);
+        fail(*st.node, "input '" + st.node->inputs[ctx.in.size()] + "' has no value", ctx.in);
       ctx.in.push_back(s < 0 ? at::Tensor() : env[s]);
     }
     double t0 = profile ? now_ms() : 0, c0 = profile ? cpu_ms() : 0;
-    m.execute(*st.node, *st.fn, ctx);
+    execute(*st.node, *st.fn, ctx);
     if (profile) {
       double dt = now_ms() - t0, dc = cpu_ms() - c0;
       OpTime& t = by_op[st.node->op_type];
@@ -1496,9 +1532,11 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
                      o.str().c_str());
       }
     }
-    for (size_t i = 0; i < st.out.size(); ++i)
-      if (st.out[i] >= 0) env[st.out[i]] = std::move(ctx.out[i]);
-    for (int s : st.release) env[s] = at::Tensor();
+    for (size_t k = 0; k < st.out.size(); ++k)
+      if (st.out[k] >= 0) env[st.out[k]] = std::move(ctx.out[k]);
+    if (after && !after(i)) return false;
+    for (int s : st.release)
+      if (!keep || !(*keep)[s]) env[s] = at::Tensor();
   }
   if (profile) {
     std::vector<std::pair<double, std::string>> rows;
@@ -1506,17 +1544,173 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
     for (const auto& [op, v] : by_op) rows.emplace_back(v.cpu, op), total += v.wall, total_cpu += v.cpu;
     std::sort(rows.rbegin(), rows.rend());
     std::fprintf(stderr, "%s: %.1f ms (%.1f ms CPU) in %zu nodes; tensor pool: %zu mappings so far, %.0f MiB cached\n",
-                 m.model.path.c_str(), total, total_cpu, m.steps.size(), tensor_memory_pool_mappings(),
+                 model.path.c_str(), total, total_cpu, ran, tensor_memory_pool_mappings(),
                  double(tensor_memory_pool_cached_bytes()) / (1 << 20));
     for (const auto& [cpu, op] : rows)
       std::fprintf(stderr, "  %-20s %8.2f ms %8.2f ms CPU %5d nodes\n", op.c_str(), by_op[op].wall, cpu, by_op[op].count);
   }
+  return true;
+}
+
+std::map<std::string, HostTensor> OnnxGraph::Impl::outputs_of(const std::vector<at::Tensor>& env) const {
   std::map<std::string, HostTensor> result;
-  for (const auto& [name, s] : m.output_slots) {
-    if (!env[s].defined()) throw Error(m.model.path, "output '" + name + "' was not produced");
+  for (const auto& [name, s] : output_slots) {
+    if (!env[s].defined()) throw Error(model.path, "output '" + name + "' was not produced");
     result[name] = to_host(env[s]);
   }
   return result;
 }
+
+std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, HostTensor>& feeds) const {
+  c10::InferenceMode guard;
+  const Impl& m = *impl_;
+  std::vector<at::Tensor> env = m.constants;
+  for (const auto& [name, s] : m.input_slots) {
+    auto it = feeds.find(name);
+    if (it == feeds.end()) throw Error(m.model.path, "input '" + name + "' was not given");
+    env[s] = to_aten(it->second);
+  }
+  for (const auto& [name, t] : feeds)
+    if (!m.slot_of.count(name)) throw Error(m.model.path, "the graph has no input named '" + name + "'");
+  m.run_steps(env, nullptr, nullptr);
+  return m.outputs_of(env);
+}
+
+
+std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, HostTensor>& feeds,
+                                                 const std::vector<std::string>& stable_inputs,
+                                                 std::shared_ptr<const Stable>& stable) const {
+  c10::InferenceMode guard;
+  const Impl& m = *impl_;
+  auto st = std::make_shared<Stable>();
+  st->graph = &m;
+  std::vector<at::Tensor> env = m.constants;
+  for (const auto& [name, s] : m.input_slots) {
+    auto it = feeds.find(name);
+    if (it == feeds.end()) throw Error(m.model.path, "input '" + name + "' was not given");
+    env[s] = to_aten(it->second);
+  }
+  for (const auto& [name, t] : feeds)
+    if (!m.slot_of.count(name)) throw Error(m.model.path, "the graph has no input named '" + name + "'");
+  // Each runtime value, as the run makes it, is derived (from the stable inputs and shape
+  // arithmetic alone: kept), shape arithmetic of the other inputs (small; recomputed by later
+  // runs and checked where a kept step read it), or neither.
+  enum Kind : char { kOther, kDerived, kShape };
+  std::vector<char> kind(size_t(m.slots), kOther), keep(size_t(m.slots), 0);
+  for (const std::string& name : stable_inputs) {
+    int slot = -1;
+    for (const auto& [n, s] : m.input_slots)
+      if (n == name) slot = s;
+    if (slot < 0) throw Error(m.model.path, "the graph has no input named '" + name + "'");
+    kind[size_t(slot)] = kDerived;
+    keep[size_t(slot)] = 1;
+    st->inputs.emplace_back(name, env[size_t(slot)]);
+  }
+  constexpr int64_t kSmall = 64;  // elements: shape arithmetic stays this small
+  std::vector<char> guarded(size_t(m.slots), 0);
+  st->done.assign(m.steps.size(), 0);
+  auto classify = [&](size_t i) {
+    const Impl::Step& step = m.steps[i];
+    bool all_derived = true, all_known = true;
+    for (int s : step.in) {
+      if (s < 0 || m.constants[s].defined()) continue;
+      all_derived = all_derived && kind[size_t(s)] == kDerived;
+      all_known = all_known && kind[size_t(s)] != kOther;
+    }
+    bool small = true;
+    for (int s : step.out) small = small && (s < 0 || !env[size_t(s)].defined() || env[size_t(s)].numel() <= kSmall);
+    const bool arithmetic = step.node->op_type == "Shape" || (shape_arithmetic(step.node->op_type) && small);
+    Kind out = kOther;
+    // A step that is not small arithmetic (a projection, a tile of a constant) over derived
+    // values and shape arithmetic is kept, its shape arithmetic checked by later runs.
+    if (all_derived || (all_known && !arithmetic)) {
+      out = kDerived;
+      st->done[i] = 1;
+      for (int s : step.in)
+        if (s >= 0 && kind[size_t(s)] == kShape && !guarded[size_t(s)]) {
+          guarded[size_t(s)] = 1;
+          st->guards.emplace_back(s, env[size_t(s)].clone());
+        }
+    } else if ((all_known && arithmetic) || step.node->op_type == "Shape") {
+      out = kShape;
+    }
+    for (int s : step.out)
+      if (s >= 0) {
+        kind[size_t(s)] = out;
+        keep[size_t(s)] = out == kDerived;  // held to the end; what is not read later is dropped there
+      }
+    return true;
+  };
+  m.run_steps(env, nullptr, &keep, classify);
+  // Keep what the other steps, or the outputs, read of the derived values.
+  std::vector<char> read(size_t(m.slots), 0);
+  for (size_t i = 0; i < m.steps.size(); ++i)
+    if (!st->done[i])
+      for (int s : m.steps[i].in)
+        if (s >= 0) read[size_t(s)] = 1;
+  for (const auto& [name, s] : m.output_slots) read[size_t(s)] = 1;
+  for (int s = 0; s < m.slots; ++s)
+    if (kind[size_t(s)] == kDerived && read[size_t(s)] && env[size_t(s)].defined())
+      st->values.emplace_back(s, env[size_t(s)]);
+  std::map<std::string, HostTensor> out = m.outputs_of(env);
+  stable = st;
+  return out;
+}
+
+std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, HostTensor>& feeds, const Stable& stable) const {
+  c10::InferenceMode guard;
+  const Impl& m = *impl_;
+  if (stable.graph != &m) throw Error(m.model.path, "stable values made by another graph");
+  std::vector<at::Tensor> env = m.constants;
+  for (const auto& [s, t] : stable.values) env[size_t(s)] = t;
+  for (const auto& [name, s] : m.input_slots) {
+    bool is_stable = false;
+    for (const auto& [n, t] : stable.inputs) is_stable = is_stable || n == name;
+    auto it = feeds.find(name);
+    if (is_stable && it != feeds.end())
+      throw Error(m.model.path, "input '" + name + "' was given twice (it is one of the stable inputs)");
+    if (!is_stable && it == feeds.end()) throw Error(m.model.path, "input '" + name + "' was not given");
+    if (it != feeds.end()) env[s] = to_aten(it->second);
+  }
+  for (const auto& [name, t] : feeds)
+    if (!m.slot_of.count(name)) throw Error(m.model.path, "the graph has no input named '" + name + "'");
+  // The shape arithmetic the kept values were made with is recomputed by the other steps
+  // and checked as it is made; any difference and the whole graph runs.
+  std::vector<char> rest(stable.done.size());
+  for (size_t i = 0; i < rest.size(); ++i) rest[i] = !stable.done[i];
+  bool same = true;
+  for (const auto& [g, value] : stable.guards)  // a guard on an input itself
+    if (env[size_t(g)].defined()) same = same && same_value(env[size_t(g)], value);
+  auto check = [&](size_t i) {
+    for (int s : m.steps[i].out)
+      for (const auto& [g, value] : stable.guards)
+        if (s == g && !same_value(env[size_t(s)], value)) return false;
+    return true;
+  };
+  if (same) same = m.run_steps(env, &rest, nullptr, check);
+  if (same) return m.outputs_of(env);
+  ++stable.whole_runs;
+  env = m.constants;
+  for (const auto& [name, s] : m.input_slots) {
+    for (const auto& [n, t] : stable.inputs)
+      if (n == name) env[s] = t;
+    auto it = feeds.find(name);
+    if (it != feeds.end()) env[s] = to_aten(it->second);
+  }
+  m.run_steps(env, nullptr, nullptr);
+  return m.outputs_of(env);
+}
+
+size_t OnnxGraph::stable_bytes(const Stable& stable) {
+  std::set<const void*> seen;  // the caller counts its own inputs
+  for (const auto& [n, t] : stable.inputs)
+    if (t.defined() && t.numel() > 0) seen.insert(t.storage().data());
+  size_t bytes = 0;
+  for (const auto& [s, t] : stable.values)
+    if (t.defined() && t.numel() > 0 && seen.insert(t.storage().data()).second) bytes += t.storage().nbytes();
+  return bytes;
+}
+
+size_t OnnxGraph::whole_runs(const Stable& stable) { return stable.whole_runs.load(); }
 
 }  // namespace isegman::models

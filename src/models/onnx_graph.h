@@ -54,6 +54,26 @@ class OnnxGraph {
   // the unread ones, and the taps.
   std::map<std::string, HostTensor> run(const std::map<std::string, HostTensor>& feeds) const;
 
+  // The values a run computes from some of its inputs alone (the "stable" ones) and the
+  // shapes of the others, kept for later runs that give the same stable inputs: a SAM
+  // decoder's projections of the image embedding are the same for every click on that
+  // image. Immutable once made; shared freely between threads.
+  struct Stable;
+  // Runs the graph as run(feeds) does and also keeps, in `stable`, the values of the nodes
+  // whose runtime inputs all derive from the inputs named in `stable_inputs`, or from shapes
+  // of the other inputs (the shape arithmetic an export makes to broadcast or tile).
+  std::map<std::string, HostTensor> run(const std::map<std::string, HostTensor>& feeds,
+                                        const std::vector<std::string>& stable_inputs,
+                                        std::shared_ptr<const Stable>& stable) const;
+  // Runs the rest: `feeds` must hold every graph input but the stable ones. Returns what
+  // run() returns for both feeds together, bit for bit; when the shape arithmetic gives
+  // other values than when `stable` was made, the whole graph runs instead.
+  std::map<std::string, HostTensor> run(const std::map<std::string, HostTensor>& feeds, const Stable& stable) const;
+  // Bytes the kept values of `stable` hold beyond the stable inputs themselves.
+  static size_t stable_bytes(const Stable& stable);
+  // Whether that run fell back to running the whole graph (tests, diagnostics).
+  static size_t whole_runs(const Stable& stable);
+
   // Every operator type the executor implements (default ONNX domain).
   static std::vector<std::string> supported_ops();
 

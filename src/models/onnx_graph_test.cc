@@ -600,3 +600,54 @@ TEST(OnnxGraph, MatMulAndGemmWithEmptyInnerAxis) {
   EXPECT_EQ(floats_of(out["y"]), (std::vector<float>(6, 0.0f)));
   EXPECT_EQ(floats_of(out["z"]), (std::vector<float>{1, 2, 3, 1, 2, 3}));
 }
+
+// Values computed from some inputs alone are kept and reused: the rest of the graph gives
+// what a whole run gives, shape arithmetic of the other inputs is checked, and the inputs
+// are checked.
+TEST(OnnxGraph, StableValuesAreComputedOnceAndReused) {
+  Builder b(13);
+  b.input("x", {3});
+  b.input("y", {-1});
+  b.floats("c", {3}, {1, 2, 3});
+  b.ints("zero", {}, {0});
+  b.ints("axes", {1}, {0});
+  b.output("sum");
+  b.output("only_x");
+  b.node("Mul", {"x", "c"}, {"xc"});          // from x alone
+  b.node("Neg", {"xc"}, {"only_x"});          // from x alone, and an output
+  b.node("Shape", {"y"}, {"ys"});             // shape arithmetic of y ...
+  b.node("Gather", {"ys", "zero"}, {"n"});
+  b.node("Unsqueeze", {"n", "axes"}, {"reps"});
+  b.node("Tile", {"xc", "reps"}, {"tiled"});  // ... that a kept step reads
+  attr_int(b.node("Concat", {"y", "y", "y"}, {"yyy"}), "axis", 0);
+  b.node("Add", {"tiled", "yyy"}, {"sum"});   // needs y's values
+  Graph g(b);
+  const HostTensor x = HostTensor::from_floats({3}, {1, -2, 0.5f});
+  auto y_of = [](std::vector<float> v) { return HostTensor::from_floats({int64_t(v.size())}, v); };
+  std::shared_ptr<const OnnxGraph::Stable> kept;
+  auto first = g.g->run({{"x", x}, {"y", y_of({4, 5})}}, {"x"}, kept);
+  auto whole = g.g->run({{"x", x}, {"y", y_of({4, 5})}});
+  EXPECT_EQ(floats_of(first.at("sum")), floats_of(whole.at("sum")));
+  EXPECT_EQ(floats_of(first.at("only_x")), floats_of(whole.at("only_x")));
+  EXPECT_GT(OnnxGraph::stable_bytes(*kept), 0u);
+  // Other values of y, same shape: from the kept values.
+  for (int round = 0; round < 2; ++round) {
+    auto part = g.g->run({{"y", y_of({0, 1})}}, *kept);
+    auto ref = g.g->run({{"x", x}, {"y", y_of({0, 1})}});
+    EXPECT_EQ(floats_of(part.at("sum")), floats_of(ref.at("sum")));
+    EXPECT_EQ(floats_of(part.at("only_x")), floats_of(ref.at("only_x")));
+  }
+  EXPECT_EQ(floats_of(g.g->run({{"y", y_of({0, 0})}}, *kept).at("sum")),
+            (std::vector<float>{1, -4, 1.5f, 1, -4, 1.5f}));
+  EXPECT_EQ(OnnxGraph::whole_runs(*kept), 0u);
+  // Another length of y tiles xc another number of times: the whole graph runs.
+  auto longer = g.g->run({{"y", y_of({0, 0, 1})}}, *kept);
+  EXPECT_EQ(OnnxGraph::whole_runs(*kept), 1u);
+  EXPECT_EQ(floats_of(longer.at("sum")), floats_of(g.g->run({{"x", x}, {"y", y_of({0, 0, 1})}}).at("sum")));
+  EXPECT_THROW(g.g->run({}, *kept), Error);                           // y missing
+  EXPECT_THROW(g.g->run({{"x", x}, {"y", y_of({1, 2})}}, *kept), Error);  // x given twice
+  std::shared_ptr<const OnnxGraph::Stable> none;
+  EXPECT_THROW(g.g->run({{"x", x}, {"y", x}}, {"z"}, none), Error);   // no such input
+  Graph g2(b);
+  EXPECT_THROW(g2.g->run({{"y", x}}, *kept), Error);                  // another graph's values
+}

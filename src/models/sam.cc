@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 
 #include "core/error.h"
@@ -439,6 +440,22 @@ void candidates_before_selection(const std::vector<std::string>& taps, const Axi
 
 // ---------------------------------------------------------------- model
 
+// The decoder's values that depend on the embedding alone (no previous mask): made by the
+// first such decode, for the decoder that made them and the features they came from.
+struct DecoderValues {
+  std::mutex mu;
+  const OnnxGraph* decoder = nullptr;
+  std::weak_ptr<std::vector<uint8_t>> features;
+  std::shared_ptr<const OnnxGraph::Stable> stable;
+};
+std::shared_ptr<DecoderValues> new_decoder_values() { return std::make_shared<DecoderValues>(); }
+
+size_t SamModel::decoder_values_bytes(const SamEmbedding& e) {
+  if (!e.decoder_values) return 0;
+  std::lock_guard<std::mutex> lock(e.decoder_values->mu);
+  return e.decoder_values->stable ? OnnxGraph::stable_bytes(*e.decoder_values->stable) : 0;
+}
+
 struct SamModel::Impl {
   std::unique_ptr<OnnxGraph> encoder, decoder;
   std::string model_id;
@@ -595,14 +612,40 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
                   std::to_string(lr * lr));
     mask = *previous_low_res;
   }
-  std::map<std::string, HostTensor> feeds;
-  feeds["image_embeddings"] = emb.features;
+  // The embedding, an empty mask prompt and the image size are the same for every click on
+  // this image: what the decoder makes of them alone is computed once and kept with the
+  // embedding (a previous mask changes them, so that decode runs whole).
+  std::map<std::string, HostTensor> per_image, feeds;
+  per_image["image_embeddings"] = emb.features;
+  per_image["mask_input"] = make_input(mask_info, {1, 1, lr, lr}, mask);
+  per_image["has_mask_input"] = make_input(info("has_mask_input"), {1}, {has_mask ? 1.f : 0.f});
+  per_image["orig_im_size"] = make_input(info("orig_im_size"), {2}, {float(emb.image_height), float(emb.image_width)});
   feeds["point_coords"] = make_input(info("point_coords"), {1, n, 2}, coords);
   feeds["point_labels"] = make_input(info("point_labels"), {1, n}, labels);
-  feeds["mask_input"] = make_input(mask_info, {1, 1, lr, lr}, mask);
-  feeds["has_mask_input"] = make_input(info("has_mask_input"), {1}, {has_mask ? 1.f : 0.f});
-  feeds["orig_im_size"] = make_input(info("orig_im_size"), {2}, {float(emb.image_height), float(emb.image_width)});
-  auto outs = dec.run(feeds);
+  std::map<std::string, HostTensor> outs;
+  if (has_mask || !emb.decoder_values) {
+    feeds.insert(per_image.begin(), per_image.end());
+    outs = dec.run(feeds);
+  } else {
+    DecoderValues& kept = *emb.decoder_values;
+    std::shared_ptr<const OnnxGraph::Stable> stable;
+    {
+      std::lock_guard<std::mutex> lock(kept.mu);
+      if (kept.stable && kept.decoder == &dec && kept.features.lock() == emb.features.bytes) stable = kept.stable;
+    }
+    if (stable) {
+      outs = dec.run(feeds, *stable);
+    } else {
+      std::vector<std::string> names;
+      for (const auto& [name, t] : per_image) names.push_back(name);
+      feeds.insert(per_image.begin(), per_image.end());
+      outs = dec.run(feeds, names, stable);
+      std::lock_guard<std::mutex> lock(kept.mu);
+      kept.stable = stable;
+      kept.decoder = &dec;
+      kept.features = emb.features.bytes;
+    }
+  }
   const HostTensor& ious = output(outs, dec, "iou_predictions", 1);
   const HostTensor& low = output(outs, dec, "low_res_masks", 2);
   if (low.shape.size() != 4 || low.shape[0] != 1 || low.shape[2] != low.shape[3])

@@ -33,6 +33,10 @@ SamInput sam_preprocess(const Image& rgb, int size = 1024);
 // The resized image's side lengths for an image of w x h: round(w * size / max(w, h)).
 void sam_resized_size(int w, int h, int size, int& rw, int& rh);
 
+// What the prompt decoder computes from an embedding alone, kept with it (sam.cc).
+struct DecoderValues;
+std::shared_ptr<DecoderValues> new_decoder_values();
+
 // The encoder's output for one image, with everything needed to use it later.
 struct SamEmbedding {
   int image_width = 0, image_height = 0;
@@ -41,6 +45,9 @@ struct SamEmbedding {
   HostTensor features;  // float32 [1, C, G, G]
   std::string model_id;   // of the encoder that produced it
   std::string image_key;  // hash of the (8-bit) image content
+  // Filled by the first decode without a previous mask and read by the later ones (the
+  // image-side projections, ~20 % of a decode); copies of this embedding share it.
+  std::shared_ptr<DecoderValues> decoder_values = new_decoder_values();
 
   bool empty() const { return features.numel() == 0; }
   FeatureMap feature_map() const;
@@ -85,6 +92,8 @@ class SamModel {
   // upsampled as SAM's export does (bilinear to the model's input size, cropped, bilinear
   // to the image). A single-mask decoder's other candidates are made this way.
   Mask mask_from_low_res(const SamEmbedding& embedding, const std::vector<float>& low_res_logits) const;
+  // Bytes the decoder's values kept with `embedding` hold (0 before its first decode).
+  static size_t decoder_values_bytes(const SamEmbedding& embedding);
 
  private:
   struct Impl;

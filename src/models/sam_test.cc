@@ -332,3 +332,48 @@ TEST(SamPredictor, RejectsBadPrompts) {
   std::vector<float> wrong(100, 0.f);
   EXPECT_THROW(p.predict({{1, 1, 1}}, &wrong), Error);
 }
+
+// The values a decode computes from the embedding alone are kept with it and reused: a
+// decode from them gives what the whole graph gives, bit for bit, and a previous mask
+// (which changes them) runs the whole graph.
+TEST(SamModel, DecoderValuesKeptWithTheEmbeddingChangeNoResult) {
+  REQUIRE_MODELS();
+  auto model = shared_model();
+  Image img(160, 120, 3);
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 160; ++x) {
+      const bool box = x > 40 && x < 110 && y > 30 && y < 90;
+      img.at(x, y, 0) = box ? 0.85f : 0.2f + x / 400.f;
+      img.at(x, y, 1) = box ? 0.3f : 0.5f;
+      img.at(x, y, 2) = box ? 0.2f : 0.4f + y / 300.f;
+    }
+  SamEmbedding kept = model->encode(img);
+  SamEmbedding whole = kept;
+  whole.decoder_values = nullptr;  // no place to keep them: every decode runs the whole graph
+  EXPECT_EQ(SamModel::decoder_values_bytes(kept), 0u);
+  const std::vector<std::vector<Click>> prompts = {{{75, 60, 1}}, {{75, 60, 1}, {20, 20, 0}}, {{130, 100, 1}}};
+  for (const auto& clicks : prompts) {
+    SegmentResult a = model->decode(kept, clicks), b = model->decode(whole, clicks);
+    ASSERT_EQ(a.candidate_low_res.size(), b.candidate_low_res.size());
+    for (size_t c = 0; c < a.candidate_low_res.size(); ++c) EXPECT_EQ(a.candidate_low_res[c], b.candidate_low_res[c]);
+    EXPECT_EQ(a.candidate_scores, b.candidate_scores);
+    EXPECT_EQ(a.mask().data, b.mask().data);
+  }
+  const size_t bytes = SamModel::decoder_values_bytes(kept);
+  EXPECT_GT(bytes, 0u);
+  std::printf("decoder values kept with a %zu-byte embedding: %zu bytes\n", kept.features.bytes->size(), bytes);
+  // A copy shares them; a previous mask bypasses them.
+  SamEmbedding copy = kept;
+  EXPECT_EQ(SamModel::decoder_values_bytes(copy), bytes);
+  SegmentResult first = model->decode(kept, prompts[0]);
+  SegmentResult a = model->decode(kept, prompts[0], &first.candidate_low_res[size_t(first.mask_index)]);
+  SegmentResult b = model->decode(whole, prompts[0], &first.candidate_low_res[size_t(first.mask_index)]);
+  EXPECT_EQ(a.candidate_low_res, b.candidate_low_res);
+  // New features in the same embedding object are not decoded with the old values.
+  SamEmbedding other = model->encode(Image(160, 120, 3, 0.5f));
+  SamEmbedding swapped = kept;
+  swapped.features = other.features;
+  SamEmbedding other_whole = other;
+  other_whole.decoder_values = nullptr;
+  EXPECT_EQ(model->decode(swapped, prompts[0]).candidate_low_res, model->decode(other_whole, prompts[0]).candidate_low_res);
+}

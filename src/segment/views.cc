@@ -96,7 +96,8 @@ size_t view_bytes(const SegmentView& v) {
   return sizeof(SegmentView) + frame_bytes(v.frame) + v.rgb8.capacity() +
          (v.depth.data.capacity() + v.alpha.data.capacity()) * sizeof(float) +
          v.all_votes.bytes() +
-         (v.embedding.features.bytes ? v.embedding.features.bytes->capacity() : 0);
+         (v.embedding.features.bytes ? v.embedding.features.bytes->capacity() : 0) +
+         models::SamModel::decoder_values_bytes(v.embedding);
 }
 
 Image SegmentView::rgb_image() const {
