@@ -1115,6 +1115,8 @@ struct OnnxGraph::Impl {
   // (and may mark more of keep); returning false stops the run, and run_steps returns false.
   bool run_steps(std::vector<at::Tensor>& env, const std::vector<char>* run_step, const std::vector<char>* keep,
                  const std::function<bool(size_t)>& after = nullptr) const;
+  // The constants with every graph input bound from feeds (all inputs given, no unknown ones).
+  std::vector<at::Tensor> bind(const std::map<std::string, HostTensor>& feeds) const;
   std::map<std::string, HostTensor> outputs_of(const std::vector<at::Tensor>& env) const;
 
   void execute(const Node& n, const OpFn& fn, Ctx& ctx) const {
@@ -1552,6 +1554,18 @@ bool OnnxGraph::Impl::run_steps(std::vector<at::Tensor>& env, const std::vector<
   return true;
 }
 
+std::vector<at::Tensor> OnnxGraph::Impl::bind(const std::map<std::string, HostTensor>& feeds) const {
+  std::vector<at::Tensor> env = constants;
+  for (const auto& [name, s] : input_slots) {
+    auto it = feeds.find(name);
+    if (it == feeds.end()) throw Error(model.path, "input '" + name + "' was not given");
+    env[s] = to_aten(it->second);
+  }
+  for (const auto& [name, t] : feeds)
+    if (!slot_of.count(name)) throw Error(model.path, "the graph has no input named '" + name + "'");
+  return env;
+}
+
 std::map<std::string, HostTensor> OnnxGraph::Impl::outputs_of(const std::vector<at::Tensor>& env) const {
   std::map<std::string, HostTensor> result;
   for (const auto& [name, s] : output_slots) {
@@ -1564,18 +1578,10 @@ std::map<std::string, HostTensor> OnnxGraph::Impl::outputs_of(const std::vector<
 std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, HostTensor>& feeds) const {
   c10::InferenceMode guard;
   const Impl& m = *impl_;
-  std::vector<at::Tensor> env = m.constants;
-  for (const auto& [name, s] : m.input_slots) {
-    auto it = feeds.find(name);
-    if (it == feeds.end()) throw Error(m.model.path, "input '" + name + "' was not given");
-    env[s] = to_aten(it->second);
-  }
-  for (const auto& [name, t] : feeds)
-    if (!m.slot_of.count(name)) throw Error(m.model.path, "the graph has no input named '" + name + "'");
+  std::vector<at::Tensor> env = m.bind(feeds);
   m.run_steps(env, nullptr, nullptr);
   return m.outputs_of(env);
 }
-
 
 std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, HostTensor>& feeds,
                                                  const std::vector<std::string>& stable_inputs,
@@ -1584,14 +1590,7 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
   const Impl& m = *impl_;
   auto st = std::make_shared<Stable>();
   st->graph = &m;
-  std::vector<at::Tensor> env = m.constants;
-  for (const auto& [name, s] : m.input_slots) {
-    auto it = feeds.find(name);
-    if (it == feeds.end()) throw Error(m.model.path, "input '" + name + "' was not given");
-    env[s] = to_aten(it->second);
-  }
-  for (const auto& [name, t] : feeds)
-    if (!m.slot_of.count(name)) throw Error(m.model.path, "the graph has no input named '" + name + "'");
+  std::vector<at::Tensor> env = m.bind(feeds);
   // Each runtime value, as the run makes it, is derived (from the stable inputs and shape
   // arithmetic alone: kept), shape arithmetic of the other inputs (small; recomputed by later
   // runs and checked where a kept step read it), or neither.
