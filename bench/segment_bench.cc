@@ -249,7 +249,8 @@ void selection_against_labels(const segment::Session& s, const std::vector<int>&
   recall = in_object ? double(true_pos) / in_object : 0;
 }
 
-void BM_LargeScene(benchmark::State& state) {
+// max_side: the views' working resolution cap (segment --max-side).
+void large_scene(benchmark::State& state, int max_side) {
   auto sam = sam_or_skip(state);
   if (!sam) return;
   using clock = std::chrono::steady_clock;
@@ -278,6 +279,7 @@ void BM_LargeScene(benchmark::State& state) {
   demo_click(demo, 0, cam, x, y);
   const Click click = pixel_centre_click(x, y, 1);
   segment::ViewOptions vo;
+  vo.max_side = max_side;
   vo.cache_dir = (fs::temp_directory_path() / "isegman-bench-large-embeddings").string();
   fs::remove_all(vo.cache_dir);  // encode for real: the first click of a session
   fs::create_directories(vo.cache_dir);
@@ -332,14 +334,15 @@ void BM_LargeScene(benchmark::State& state) {
   state.counters["peak_first_mb"] = peak_first_mb;
   state.counters["peak_clicks_mb"] = peak_clicks_mb;
   std::printf(
-      "[large] %zu Gaussians, %zu cameras at %dx%d, %d auto views (real SAM encoder, fresh cache):\n"
+      "[large] %zu Gaussians, %zu cameras at %dx%d, %d auto views at %dx%d (real SAM encoder, fresh cache):\n"
       "  PLY load %.0f ms, its peak %.0f MB for a %.0f MB scene (%.2fx);\n"
       "  scene generation %.0f ms; view choice %.2f ms; building the views %.0f ms without SAM + SAM "
       "encoding %.0f ms;\n  per click %.0f ms (propagation %.1f, SAM %.0f, voting %.0f; %zu selected; %d/%d views "
       "accepted;\n  against the object's labels, over the Gaussians the votes saw: precision %.3f, recall %.3f);\n"
       "  views' resident memory %.0f MB (%.0f MB a view), peak RSS %.0f MB%s (up to the first click %.0f MB, "
       "later clicks %.0f MB);\n  result hash: first click %016llx, later clicks %016llx\n  voting of the last click: %s\n",
-      demo.bundle.gaussians.size(), demo.bundle.cameras.size(), opt.width, opt.height, t.views, ms_load,
+      demo.bundle.gaussians.size(), demo.bundle.cameras.size(), opt.width, opt.height, t.views, working.width,
+      working.height, ms_load,
       load_peak_mb, loaded_mb, load_peak_mb / loaded_mb, ms_scene,
       t.ms_selection, views_ms_no_sam, t.ms_embedding, n ? ms_clicks / n : 0, last.ms_propagation, last.ms_sam,
       last.ms_voting, last.selected, last.accepted, t.views, precision, recall, rss_views - rss_scene,
@@ -349,7 +352,16 @@ void BM_LargeScene(benchmark::State& state) {
   std::fflush(stdout);
   fs::remove_all(vo.cache_dir);
 }
+void BM_LargeScene(benchmark::State& state) { large_scene(state, segment::ViewOptions().max_side); }
 BENCHMARK(BM_LargeScene)->Arg(3000000)->Arg(6000000)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+// The same scene segmented at a lower working resolution (segment --max-side 640): what a
+// click costs and selects when the views are rendered and voted at 640x422.
+void BM_LargeSceneAtMaxSide(benchmark::State& state, int max_side) { large_scene(state, max_side); }
+BENCHMARK_CAPTURE(BM_LargeSceneAtMaxSide, 640, 640)
+    ->Arg(6000000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(2);
 
 // What packing a view's all-pixel votes costs a round: unpacking one view's list into the
 // list the round reuses. 2.6M entries is a view of the 6M-Gaussian scene above (index gaps
