@@ -1068,6 +1068,7 @@ const OpFn& fused_attention() {
 
 struct OnnxGraph::Impl {
   OnnxModel model;
+  uint64_t id = 0;  // unique in the process
   // Nodes left after folding, with inputs/outputs resolved to slots.
   struct Step {
     const Node* node;
@@ -1135,6 +1136,8 @@ struct OnnxGraph::Impl {
 };
 
 OnnxGraph::OnnxGraph(const std::string& path, const OutputRule& rule) : impl_(std::make_unique<Impl>()) {
+  static std::atomic<uint64_t> graphs{0};
+  impl_->id = ++graphs;
   use_tensor_memory_pool();
   c10::InferenceMode guard;
   Impl& m = *impl_;
@@ -1486,7 +1489,7 @@ bool same_value(const at::Tensor& a, const at::Tensor& b) {
 }  // namespace
 
 struct OnnxGraph::Stable {
-  const Impl* graph = nullptr;                     // the graph that made it
+  uint64_t graph = 0;                              // id() of the graph that made it
   std::vector<std::pair<std::string, at::Tensor>> inputs;  // the stable inputs (the caller's bytes)
   std::vector<char> done;                          // per step: computed here, skipped by run(feeds, stable)
   std::vector<std::pair<int, at::Tensor>> values;  // the slots the other steps (or the outputs) read
@@ -1589,7 +1592,7 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
   c10::InferenceMode guard;
   const Impl& m = *impl_;
   auto st = std::make_shared<Stable>();
-  st->graph = &m;
+  st->graph = m.id;
   std::vector<at::Tensor> env = m.bind(feeds);
   // Each runtime value, as the run makes it, is derived (from the stable inputs and shape
   // arithmetic alone: kept), shape arithmetic of the other inputs (small; recomputed by later
@@ -1659,7 +1662,7 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
 std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, HostTensor>& feeds, const Stable& stable) const {
   c10::InferenceMode guard;
   const Impl& m = *impl_;
-  if (stable.graph != &m) throw Error(m.model.path, "stable values made by another graph");
+  if (stable.graph != m.id) throw Error(m.model.path, "stable values made by another graph");
   std::vector<at::Tensor> env = m.constants;
   for (const auto& [s, t] : stable.values) env[size_t(s)] = t;
   for (const auto& [name, s] : m.input_slots) {
@@ -1711,5 +1714,7 @@ size_t OnnxGraph::stable_bytes(const Stable& stable) {
 }
 
 size_t OnnxGraph::whole_runs(const Stable& stable) { return stable.whole_runs.load(); }
+
+uint64_t OnnxGraph::id() const { return impl_->id; }
 
 }  // namespace isegman::models

@@ -71,8 +71,10 @@ class OnnxGraph {
   std::map<std::string, HostTensor> run(const std::map<std::string, HostTensor>& feeds, const Stable& stable) const;
   // Bytes the kept values of `stable` hold beyond the stable inputs themselves.
   static size_t stable_bytes(const Stable& stable);
-  // Whether that run fell back to running the whole graph (tests, diagnostics).
+  // How many runs from `stable` found other shape values and ran the whole graph.
   static size_t whole_runs(const Stable& stable);
+  // This graph's identity, unique in the process (kept values name the graph they belong to).
+  uint64_t id() const;
 
   // Every operator type the executor implements (default ONNX domain).
   static std::vector<std::string> supported_ops();

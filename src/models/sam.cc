@@ -444,7 +444,7 @@ void candidates_before_selection(const std::vector<std::string>& taps, const Axi
 // first such decode, for the decoder that made them and the features they came from.
 struct DecoderValues {
   std::mutex mu;
-  const OnnxGraph* decoder = nullptr;
+  uint64_t decoder = 0;  // OnnxGraph::id()
   std::weak_ptr<std::vector<uint8_t>> features;
   std::shared_ptr<const OnnxGraph::Stable> stable;
 };
@@ -631,7 +631,7 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
     std::shared_ptr<const OnnxGraph::Stable> stable;
     {
       std::lock_guard<std::mutex> lock(kept.mu);
-      if (kept.stable && kept.decoder == &dec && kept.features.lock() == emb.features.bytes) stable = kept.stable;
+      if (kept.stable && kept.decoder == dec.id() && kept.features.lock() == emb.features.bytes) stable = kept.stable;
     }
     if (stable) {
       outs = dec.run(feeds, *stable);
@@ -642,7 +642,7 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
       outs = dec.run(feeds, names, stable);
       std::lock_guard<std::mutex> lock(kept.mu);
       kept.stable = stable;
-      kept.decoder = &dec;
+      kept.decoder = dec.id();
       kept.features = emb.features.bytes;
     }
   }

@@ -376,4 +376,8 @@ TEST(SamModel, DecoderValuesKeptWithTheEmbeddingChangeNoResult) {
   SamEmbedding other_whole = other;
   other_whole.decoder_values = nullptr;
   EXPECT_EQ(model->decode(swapped, prompts[0]).candidate_low_res, model->decode(other_whole, prompts[0]).candidate_low_res);
+  // Another model's decoder does not read values this one kept (even with the same file).
+  SamModel second(models_dir() + "/encoder.onnx", models_dir() + "/sam.onnx");
+  EXPECT_EQ(second.decode(kept, prompts[1]).candidate_low_res, model->decode(whole, prompts[1]).candidate_low_res);
+  EXPECT_EQ(model->decode(kept, prompts[1]).candidate_low_res, model->decode(whole, prompts[1]).candidate_low_res);
 }
