@@ -1637,10 +1637,12 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
       out = kShape;
     }
     for (int s : step.out)
-      if (s >= 0) {
-        kind[size_t(s)] = out;
-        keep[size_t(s)] = out == kDerived;  // held to the end; what is not read later is dropped there
-      }
+      if (s >= 0) kind[size_t(s)] = out;
+    // A derived value is held past its last use only when a step that is not kept reads it
+    // (this one, or an earlier one): later runs read it from the kept values.
+    if (!st->done[i])
+      for (int s : step.in)
+        if (s >= 0 && kind[size_t(s)] == kDerived) keep[size_t(s)] = 1;
     return true;
   };
   m.run_steps(env, nullptr, &keep, classify);
