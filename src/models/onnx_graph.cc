@@ -1490,7 +1490,7 @@ bool same_value(const at::Tensor& a, const at::Tensor& b) {
 
 struct OnnxGraph::Stable {
   uint64_t graph = 0;                              // id() of the graph that made it
-  std::vector<std::pair<std::string, at::Tensor>> inputs;  // the stable inputs (the caller's bytes)
+  std::map<std::string, HostTensor> inputs;        // the stable feeds (the caller's bytes)
   std::vector<char> done;                          // per step: computed here, skipped by run(feeds, stable)
   std::vector<std::pair<int, at::Tensor>> values;  // the slots the other steps (or the outputs) read
   // Shape arithmetic of the other inputs that the kept values were made with: per slot, the
@@ -1606,7 +1606,7 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
     if (slot < 0) throw Error(m.model.path, "the graph has no input named '" + name + "'");
     kind[size_t(slot)] = kDerived;
     keep[size_t(slot)] = 1;
-    st->inputs.emplace_back(name, env[size_t(slot)]);
+    st->inputs.emplace(name, feeds.at(name));
   }
   constexpr int64_t kSmall = 64;  // elements: shape arithmetic stays this small
   std::vector<char> guarded(size_t(m.slots), 0);
@@ -1665,19 +1665,12 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
   c10::InferenceMode guard;
   const Impl& m = *impl_;
   if (stable.graph != m.id) throw Error(m.model.path, "stable values made by another graph");
-  std::vector<at::Tensor> env = m.constants;
-  for (const auto& [s, t] : stable.values) env[size_t(s)] = t;
-  for (const auto& [name, s] : m.input_slots) {
-    bool is_stable = false;
-    for (const auto& [n, t] : stable.inputs) is_stable = is_stable || n == name;
-    auto it = feeds.find(name);
-    if (is_stable && it != feeds.end())
-      throw Error(m.model.path, "input '" + name + "' was given twice (it is one of the stable inputs)");
-    if (!is_stable && it == feeds.end()) throw Error(m.model.path, "input '" + name + "' was not given");
-    if (it != feeds.end()) env[s] = to_aten(it->second);
-  }
+  std::map<std::string, HostTensor> all = stable.inputs;
   for (const auto& [name, t] : feeds)
-    if (!m.slot_of.count(name)) throw Error(m.model.path, "the graph has no input named '" + name + "'");
+    if (!all.emplace(name, t).second)
+      throw Error(m.model.path, "input '" + name + "' was given twice (it is one of the stable inputs)");
+  std::vector<at::Tensor> env = m.bind(all);
+  for (const auto& [s, t] : stable.values) env[size_t(s)] = t;
   // The shape arithmetic the kept values were made with is recomputed by the other steps
   // and checked as it is made; any difference and the whole graph runs.
   std::vector<char> rest(stable.done.size());
@@ -1691,13 +1684,7 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
   };
   if (m.run_steps(env, &rest, nullptr, check)) return m.outputs_of(env);
   ++stable.whole_runs;
-  env = m.constants;
-  for (const auto& [name, s] : m.input_slots) {
-    for (const auto& [n, t] : stable.inputs)
-      if (n == name) env[s] = t;
-    auto it = feeds.find(name);
-    if (it != feeds.end()) env[s] = to_aten(it->second);
-  }
+  env = m.bind(all);
   m.run_steps(env, nullptr, nullptr);
   return m.outputs_of(env);
 }
@@ -1705,7 +1692,7 @@ std::map<std::string, HostTensor> OnnxGraph::run(const std::map<std::string, Hos
 size_t OnnxGraph::stable_bytes(const Stable& stable) {
   std::set<const void*> seen;  // the caller counts its own inputs
   for (const auto& [n, t] : stable.inputs)
-    if (t.defined() && t.numel() > 0) seen.insert(t.storage().data());
+    if (t.numel() > 0) seen.insert(t.bytes->data());
   size_t bytes = 0;
   for (const auto& [s, t] : stable.values)
     if (t.defined() && t.numel() > 0 && seen.insert(t.storage().data()).second) bytes += t.storage().nbytes();
