@@ -178,18 +178,41 @@ at::Tensor linear(const at::Tensor& x, const at::Tensor& w0, const at::Tensor& b
   return y.reshape(shape);
 }
 
-at::Tensor conv1x1(const at::Tensor& x0, const at::Tensor& w0, const at::Tensor& bias) {
-  at::Tensor x = x0.contiguous(), w = w0.contiguous();
-  int64_t batch = x.size(0), ci = x.size(1), hw = x.size(2) * x.size(3), co = w.size(0);
-  at::Tensor y = at::empty({batch, co, x.size(2), x.size(3)}, x.options());
-  float beta = 0.0f;
-  if (bias.defined()) {
-    y.copy_(bias.reshape({1, co, 1, 1}).expand(y.sizes()));
-    beta = 1.0f;
-  }
-  for (int64_t i = 0; i < batch; ++i)
-    sgemm(false, false, co, hw, ci, 1.0f, w.data_ptr<float>(), ci, x.data_ptr<float>() + i * ci * hw, hw, beta,
-          y.data_ptr<float>() + i * co * hw, hw);
+at::Tensor conv1x1(const at::Tensor& x0, const at::Tensor& w0, const at::Tensor& bias0) {
+  const int64_t batch = x0.size(0), ci = x0.size(1), hw = x0.size(2) * x0.size(3), co = w0.size(0);
+  const bool nhwc = x0.stride(1) == 1 && x0.stride(3) == ci && x0.stride(2) == x0.size(3) * ci;
+  const at::Tensor x = nhwc ? x0 : x0.contiguous();
+  const at::Tensor w = w0.reshape({co, ci}).contiguous();
+  const at::Tensor bias = bias0.defined() ? bias0.contiguous() : at::Tensor();
+  at::Tensor y = at::empty({batch, co, x0.size(2), x0.size(3)}, x0.options());
+  if (hw == 0 || co == 0) return y;
+  // 256 pixels: the block's x^T and product (64 + 256 KB at 64 -> 256 channels) stay in L2;
+  // 256, 512 and 1024 ran 82, 84 and 96 ms for the encoder's first 1x1 on one Zen 1 core.
+  constexpr int64_t kBlock = 256;
+  const int64_t per_image = (hw + kBlock - 1) / kBlock;
+  const float* px = x.data_ptr<float>();
+  const float* pw = w.data_ptr<float>();
+  const float* pb = bias.defined() ? bias.data_ptr<float>() : nullptr;
+  float* py = y.data_ptr<float>();
+  at::parallel_for(0, batch * per_image, 1, [&](int64_t begin, int64_t end) {
+    std::vector<float> xt(nhwc ? 0 : size_t(kBlock * ci)), product(size_t(kBlock * co));
+    for (int64_t t = begin; t < end; ++t) {
+      const int64_t n = t / per_image, j0 = (t % per_image) * kBlock, nb = std::min(kBlock, hw - j0);
+      const float* a = px + n * x.stride(0) + j0 * ci;  // NHWC: the block's rows in place
+      if (!nhwc) {
+        const float* src = px + n * ci * hw + j0;
+        for (int64_t c = 0; c < ci; ++c)
+          for (int64_t j = 0; j < nb; ++j) xt[size_t(j * ci + c)] = src[c * hw + j];
+        a = xt.data();
+      }
+      sgemm(false, true, nb, co, ci, 1.0f, a, ci, pw, ci, 0.0f, product.data(), co);
+      float* dst = py + n * co * hw + j0;
+      for (int64_t o = 0; o < co; ++o) {
+        const float add = pb ? pb[o] : 0.0f;
+        for (int64_t j = 0; j < nb; ++j) dst[o * hw + j] = product[size_t(j * co + o)] + add;
+      }
+    }
+  });
   return y;
 }
 

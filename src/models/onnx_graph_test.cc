@@ -461,6 +461,47 @@ TEST(OnnxGraph, ConvTransposeWithKernelEqualToStride) {
   }
 }
 
+// A 1x1 convolution runs over blocks of 256 pixels: two images of 17 x 19 pixels (one full
+// block and a partial one each), with and without a bias, on an NCHW input and on a
+// transposed NHWC view (read in place), against the definition summed here.
+TEST(OnnxGraph, Conv1x1OverPixelBlocks) {
+  const int n = 2, ci = 5, h = 17, w = 19, co = 7;
+  for (bool nhwc : {false, true})
+    for (bool with_bias : {true, false}) {
+      Builder b;
+      std::vector<float> x = noise(n * ci * h * w, 5), wt = noise(co * ci, 6), bias = noise(co, 7);
+      if (nhwc) {
+        b.input("x", {n, h, w, ci});
+        attr_ints(b.node("Transpose", {"x"}, {"xt"}), "perm", {0, 3, 1, 2});
+      } else {
+        b.input("xt", {n, ci, h, w});
+      }
+      b.floats("w", {co, ci, 1, 1}, wt);
+      if (with_bias) b.floats("bias", {co}, bias);
+      b.output("y");
+      auto* node = b.node("Conv", with_bias ? std::vector<std::string>{"xt", "w", "bias"} : std::vector<std::string>{"xt", "w"},
+                          {"y"});
+      attr_ints(node, "kernel_shape", {1, 1});
+      Graph g(b);
+      auto out = g.g->run({{nhwc ? "x" : "xt", HostTensor::from_floats(nhwc ? std::vector<int64_t>{n, h, w, ci}
+                                                                             : std::vector<int64_t>{n, ci, h, w},
+                                                                        x)}});
+      ASSERT_EQ(out["y"].shape, (std::vector<int64_t>{n, co, h, w}));
+      const std::vector<float> y = floats_of(out["y"]);
+      size_t wrong = 0;
+      for (int b_ = 0; b_ < n; ++b_)
+        for (int o = 0; o < co; ++o)
+          for (int p = 0; p < h * w; ++p) {
+            double want = with_bias ? bias[size_t(o)] : 0.0;
+            for (int c = 0; c < ci; ++c)
+              want += double(wt[size_t(o * ci + c)]) *
+                      double(nhwc ? x[size_t((b_ * h * w + p) * ci + c)] : x[size_t((b_ * ci + c) * h * w + p)]);
+            wrong += std::fabs(y[size_t((b_ * co + o) * h * w + p)] - want) > 1e-5;
+          }
+      EXPECT_EQ(wrong, 0u) << (nhwc ? "NHWC" : "NCHW") << (with_bias ? ", bias" : ", no bias");
+    }
+}
+
 // TinyViT's window attention (opset 12): MatMul(q, kT) -> Mul(scale) -> Add(bias) ->
 // Softmax(axis 3) -> MatMul(v) becomes one FusedAttention step with the same result.
 TEST(OnnxGraph, FusesWindowAttentionWithScaleAndBias) {
