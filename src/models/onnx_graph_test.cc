@@ -502,6 +502,49 @@ TEST(OnnxGraph, Conv1x1OverPixelBlocks) {
     }
 }
 
+// Depthwise 3x3 convolutions (TinyViT's): the rows whose taps all lie inside the image sum
+// their nine taps at once. Against the definition, with stride 1 and 2, with and without
+// padding, and rows too narrow for any inner column.
+TEST(OnnxGraph, DepthwiseThreeByThreeConvolution) {
+  struct Case {
+    int h, w, stride, pad;
+  };
+  for (const Case& k : {Case{7, 9, 1, 1}, Case{8, 8, 2, 1}, Case{5, 2, 1, 1}, Case{6, 5, 1, 0}, Case{9, 11, 2, 0}}) {
+    const int n = 2, ch = 3;
+    Builder b;
+    std::vector<float> x = noise(n * ch * k.h * k.w, 8), wt = noise(ch * 9, 9), bias = noise(ch, 10);
+    b.input("x", {n, ch, k.h, k.w});
+    b.floats("w", {ch, 1, 3, 3}, wt);
+    b.floats("bias", {ch}, bias);
+    b.output("y");
+    auto* node = b.node("Conv", {"x", "w", "bias"}, {"y"});
+    attr_int(node, "group", ch);
+    attr_ints(node, "kernel_shape", {3, 3});
+    attr_ints(node, "strides", {k.stride, k.stride});
+    attr_ints(node, "pads", {k.pad, k.pad, k.pad, k.pad});
+    Graph g(b);
+    auto out = g.g->run({{"x", HostTensor::from_floats({n, ch, k.h, k.w}, x)}});
+    const int oh = (k.h + 2 * k.pad - 3) / k.stride + 1, ow = (k.w + 2 * k.pad - 3) / k.stride + 1;
+    ASSERT_EQ(out["y"].shape, (std::vector<int64_t>{n, ch, oh, ow}));
+    const std::vector<float> y = floats_of(out["y"]);
+    size_t wrong = 0;
+    for (int b_ = 0; b_ < n; ++b_)
+      for (int c = 0; c < ch; ++c)
+        for (int oy = 0; oy < oh; ++oy)
+          for (int ox = 0; ox < ow; ++ox) {
+            double want = bias[size_t(c)];
+            for (int ky = 0; ky < 3; ++ky)
+              for (int kx = 0; kx < 3; ++kx) {
+                const int iy = oy * k.stride - k.pad + ky, ix = ox * k.stride - k.pad + kx;
+                if (iy >= 0 && iy < k.h && ix >= 0 && ix < k.w)
+                  want += double(wt[size_t(c * 9 + ky * 3 + kx)]) * double(x[size_t(((b_ * ch + c) * k.h + iy) * k.w + ix)]);
+              }
+            wrong += std::fabs(y[size_t(((b_ * ch + c) * oh + oy) * ow + ox)] - want) > 1e-5;
+          }
+    EXPECT_EQ(wrong, 0u) << k.h << "x" << k.w << " stride " << k.stride << " pad " << k.pad;
+  }
+}
+
 // TinyViT's window attention (opset 12): MatMul(q, kT) -> Mul(scale) -> Add(bias) ->
 // Softmax(axis 3) -> MatMul(v) becomes one FusedAttention step with the same result.
 TEST(OnnxGraph, FusesWindowAttentionWithScaleAndBias) {
