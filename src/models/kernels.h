@@ -18,9 +18,10 @@ at::Tensor linear(const at::Tensor& x, const at::Tensor& w, const at::Tensor& bi
 // Works through blocks of 256 pixels: each block's x^T [pixels, Ci] (read in place from
 // an NHWC view, else transposed into a buffer) times W^T read transposed, then written
 // back channel by channel with the bias while in cache; the blocks spread over the
-// threads. One wide product W @ x[Ci, H*W] per image, as before, ran 1.6-2.4x slower on
-// a Zen 1 EPYC: oneDNN's sgemm takes a slow path there for a wide, 64-byte aligned
-// right-hand matrix that it does not pack (a 16-byte offset alone made it 1.6x faster).
+// threads. One wide product W @ x[Ci, H*W] per image, as before, ran the encoder's 1x1
+// convolutions 2-3x slower on a Zen 1 EPYC: oneDNN's sgemm takes a slow path there for a
+// wide, 64-byte aligned right-hand matrix (moved 16 bytes off, the same product ran 1.6x
+// faster; docs/sam.md, Speed).
 at::Tensor conv1x1(const at::Tensor& x, const at::Tensor& w, const at::Tensor& bias);
 
 // ConvTranspose2d whose kernel equals its stride (no padding, dilation 1, one group):
