@@ -276,10 +276,21 @@ int Segmentation::view_for(const ClickRecord& c, const Progress& progress) {
   return k;
 }
 
-bool Segmentation::has_view_of(int camera) const {
-  auto has = [&](const segment::SegmentView& v) { return v.camera_index == camera; };
-  if (session_ && std::any_of(session_->views().begin(), session_->views().end(), has)) return true;
-  return spare_fingerprint_ == fingerprint_ && std::any_of(spare_.begin(), spare_.end(), has);
+const segment::SegmentView* Segmentation::built_view(int camera) const {
+  if (session_)
+    for (const segment::SegmentView& v : session_->views())
+      if (v.camera_index == camera) return &v;
+  if (spare_fingerprint_ == fingerprint_)
+    for (const segment::SegmentView& v : spare_)
+      if (v.camera_index == camera) return &v;
+  return nullptr;
+}
+
+bool Segmentation::has_view_of(int camera) const { return built_view(camera) != nullptr; }
+
+bool Segmentation::decoder_ready(int camera) const {
+  const segment::SegmentView* v = built_view(camera);
+  return v && models::SamModel::decoder_values_bytes(v->embedding) > 0;
 }
 
 int Segmentation::chosen_view_count() const {
@@ -293,6 +304,8 @@ bool Segmentation::prefetch_one(int camera, const Progress& progress) {
     return false;
   if (spare_fingerprint_ != fingerprint_) spare_.clear();
   spare_fingerprint_ = fingerprint_;
+  if (decoder_tried_fingerprint_ != fingerprint_) decoder_tried_.clear();
+  decoder_tried_fingerprint_ = fingerprint_;
   const segment::SegmentView* own = nullptr;
   for (const segment::SegmentView& v : session_->views())
     if (v.camera_index == camera) own = &v;
@@ -318,8 +331,18 @@ bool Segmentation::prefetch_one(int camera, const Progress& progress) {
   } else {
     wanted = {camera};
   }
+  // One decode at the view's centre makes them; its answer is not used. Once per camera and
+  // scene: a decoder that keeps nothing (or fails) is not asked again on every call.
+  auto make_decoder_values = [&](const segment::SegmentView& v) {
+    decoder_tried_.insert(v.camera_index);
+    sam_->decode(v.embedding, {models::Click{v.camera.cx, v.camera.cy, 1}});
+  };
   for (const int c : wanted) {
-    if (has_view_of(c)) continue;
+    if (const segment::SegmentView* v = built_view(c)) {
+      if (decoder_tried_.count(c) || models::SamModel::decoder_values_bytes(v->embedding) > 0) continue;
+      make_decoder_values(*v);
+      return true;
+    }
     // Room for one more view (estimated as the size of a built one) without evicting any.
     const size_t one = session_->views().empty() ? 0 : segment::view_bytes(session_->views().front());
     if (kept_bytes() + spare_bytes() + one > kept_budget_) return false;
@@ -327,6 +350,7 @@ bool Segmentation::prefetch_one(int camera, const Progress& progress) {
     if (progress) progress(0, 1, "building ahead the view " + name + " (likely used by a click in " +
                                      snapshot_->cameras[size_t(camera)].name + ")");
     spare_.push_back(segment::build_view(snapshot_->gaussians, snapshot_->cameras[size_t(c)], c, *sam_, view_options_));
+    make_decoder_values(spare_.back());
     return true;
   }
   // All built: the encoder's cached activation blocks go back (kept while building on).

@@ -270,6 +270,10 @@ TEST(Segmentation, ViewsBuiltAheadForALookedAtCameraServeItsFirstClick) {
   EXPECT_GE(built, 1);
   EXPECT_EQ(s->view_cameras(), spread);  // the session's views are untouched until the click
   std::printf("[ ahead ] %d views built ahead for camera %d; spares %.1f MB\n", built, cam, s->spare_bytes() / 1e6);
+  // Which views hold the decoder's values before the click (the first click decodes from them).
+  const int cameras = int(a.demo.bundle.cameras.size());
+  std::vector<bool> ready_before(size_t(cameras), false);
+  for (int k = 0; k < cameras; ++k) ready_before[size_t(k)] = s->decoder_ready(k);
 
   std::vector<std::string> built_at_click;
   s->click(c, [&](int, int, const std::string& line) {
@@ -282,10 +286,13 @@ TEST(Segmentation, ViewsBuiltAheadForALookedAtCameraServeItsFirstClick) {
   EXPECT_FALSE(s->prefetch_one(cam, nullptr));
 
   const std::unique_ptr<Segmentation> t = a.open(sam);
+  EXPECT_FALSE(t->decoder_ready(t->view_cameras().front()));  // made by a view's first decode otherwise
   t->click(c, nullptr);
   EXPECT_EQ(t->view_cameras(), s->view_cameras());
-  EXPECT_EQ(t->selection(), s->selection());
+  EXPECT_EQ(t->selection(), s->selection());  // decoding from the values made ahead changes nothing
   EXPECT_GT(s->selected_count(), 0u);
+  // Every view the click used had its decoder's values made ahead, the session's too.
+  for (const int k : s->view_cameras()) EXPECT_TRUE(ready_before[size_t(k)]) << "camera " << k;
 }
 
 }  // namespace
