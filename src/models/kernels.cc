@@ -69,14 +69,26 @@ std::vector<int64_t> batch_of(const at::Tensor& t) {
 
 // exp(x) for the softmax: x = n ln2 + r with |r| <= ln2/2 (n rounded with the 1.5 * 2^23
 // trick, ln2 split in two for an exact n ln2), e^r by its Taylor series to r^7 (truncation
-// error < 1e-8 relative), 2^n built in the exponent bits. Written so the compiler vectorises
-// the loops that call it; inputs are clamped to [-87, 88] (results stay normal floats).
-inline float exp_for_softmax(float x) {
-  x = x < -87.0f ? -87.0f : (x > 88.0f ? 88.0f : x);
-  float t = x * 1.44269504088896341f;
-  float n = (t + 12582912.0f) - 12582912.0f;
-  float r = x - n * 0.693359375f + n * 2.12194440e-4f;
-  float p = 1.0f / 5040.0f;
+// error < 1e-8 relative), 2^n built in the exponent bits; inputs are clamped to [-87, 88]
+// (results stay normal floats). One template for a float and for a vector of 8 (GCC's
+// vector extensions: AVX where the CPU has it, pairs of SSE registers elsewhere), so the
+// two compute the same operations in the same order, lane for lane.
+typedef float Float8 __attribute__((vector_size(32)));
+typedef int32_t Int8 __attribute__((vector_size(32)));
+
+template <class F>
+inline F splat(float v) {
+  return F{} + v;  // v in every lane
+}
+
+template <class F, class I>
+inline F exp_for_softmax(F x) {
+  x = x < -87.0f ? splat<F>(-87.0f) : x;
+  x = x > 88.0f ? splat<F>(88.0f) : x;
+  F t = x * 1.44269504088896341f;
+  F n = (t + 12582912.0f) - 12582912.0f;
+  F r = x - n * 0.693359375f + n * 2.12194440e-4f;
+  F p = splat<F>(1.0f / 5040.0f);
   p = p * r + 1.0f / 720.0f;
   p = p * r + 1.0f / 120.0f;
   p = p * r + 1.0f / 24.0f;
@@ -84,38 +96,58 @@ inline float exp_for_softmax(float x) {
   p = p * r + 0.5f;
   p = p * r + 1.0f;
   p = p * r + 1.0f;
-  int32_t bits = (int32_t(n) + 127) << 23;
-  float two_n;
+  I bits;
+  if constexpr (sizeof(F) == sizeof(float)) {
+    bits = (int32_t(n) + 127) << 23;
+  } else {
+    bits = (__builtin_convertvector(n, I) + 127) << 23;
+  }
+  F two_n;
   std::memcpy(&two_n, &bits, sizeof two_n);
   return p * two_n;
 }
 
+inline Float8 load8(const float* p) {
+  Float8 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void store8(float* p, Float8 v) { std::memcpy(p, &v, sizeof v); }
+
 }  // namespace
 
 void softmax_rows(float* x, int64_t rows, int64_t n, int64_t ld) {
-  constexpr int64_t L = 16;  // independent lanes, so max and sum vectorise without reordering doubts
+  // 16 independent lanes (two vectors of 8) for the maximum and the sum; the lanes are
+  // then reduced in order and the tail added one by one.
+  constexpr int64_t L = 16;
   for (int64_t r = 0; r < rows; ++r) {
     float* row = x + r * ld;
-    float lane[L];
-    for (int64_t l = 0; l < L; ++l) lane[l] = -INFINITY;
+    Float8 m0 = splat<Float8>(-INFINITY), m1 = m0;
     int64_t j = 0;
-    for (; j + L <= n; j += L)
-      for (int64_t l = 0; l < L; ++l) lane[l] = std::max(lane[l], row[j + l]);
+    for (; j + L <= n; j += L) {  // std::max(lane, v): v where lane < v
+      const Float8 a = load8(row + j), b = load8(row + j + 8);
+      m0 = m0 < a ? a : m0;
+      m1 = m1 < b ? b : m1;
+    }
     float m = -INFINITY;
-    for (int64_t l = 0; l < L; ++l) m = std::max(m, lane[l]);
+    for (int l = 0; l < 8; ++l) m = std::max(m, m0[l]);
+    for (int l = 0; l < 8; ++l) m = std::max(m, m1[l]);
     for (; j < n; ++j) m = std::max(m, row[j]);
-    for (int64_t l = 0; l < L; ++l) lane[l] = 0.0f;
+    Float8 s0 = splat<Float8>(0.0f), s1 = s0;
     j = 0;
-    for (; j + L <= n; j += L)
-      for (int64_t l = 0; l < L; ++l) {
-        float e = exp_for_softmax(row[j + l] - m);
-        row[j + l] = e;
-        lane[l] += e;
-      }
+    for (; j + L <= n; j += L) {
+      const Float8 e0 = exp_for_softmax<Float8, Int8>(load8(row + j) - m);
+      const Float8 e1 = exp_for_softmax<Float8, Int8>(load8(row + j + 8) - m);
+      store8(row + j, e0);
+      store8(row + j + 8, e1);
+      s0 += e0;
+      s1 += e1;
+    }
     float sum = 0.0f;
-    for (int64_t l = 0; l < L; ++l) sum += lane[l];
+    for (int l = 0; l < 8; ++l) sum += s0[l];
+    for (int l = 0; l < 8; ++l) sum += s1[l];
     for (; j < n; ++j) {
-      float e = exp_for_softmax(row[j] - m);
+      float e = exp_for_softmax<float, int32_t>(row[j] - m);
       row[j] = e;
       sum += e;
     }
