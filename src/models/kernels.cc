@@ -116,11 +116,45 @@ inline void store8(float* p, Float8 v) { std::memcpy(p, &v, sizeof v); }
 
 }  // namespace
 
+namespace {
+
+// Rows shorter than one 16-lane step: every value goes through the scalar tail, one row
+// at a time. Eight rows at once, one per lane, do the same operations in the same order
+// for each row (the attention of many queries over a few keys: SAM's image-to-token).
+void softmax_short_rows_by_eight(float* x, int64_t n, int64_t ld) {
+  auto column = [&](int64_t j) {
+    Float8 v;
+    for (int l = 0; l < 8; ++l) v[l] = x[l * ld + j];
+    return v;
+  };
+  auto set_column = [&](int64_t j, Float8 v) {
+    for (int l = 0; l < 8; ++l) x[l * ld + j] = v[l];
+  };
+  Float8 m = splat<Float8>(-INFINITY);
+  for (int64_t j = 0; j < n; ++j) {
+    const Float8 v = column(j);
+    m = m < v ? v : m;
+  }
+  Float8 sum = splat<Float8>(0.0f);
+  for (int64_t j = 0; j < n; ++j) {
+    const Float8 e = exp_for_softmax<Float8, Int8>(column(j) - m);
+    set_column(j, e);
+    sum += e;
+  }
+  const Float8 inv = 1.0f / sum;
+  for (int64_t j = 0; j < n; ++j) set_column(j, column(j) * inv);
+}
+
+}  // namespace
+
 void softmax_rows(float* x, int64_t rows, int64_t n, int64_t ld) {
   // 16 independent lanes (two vectors of 8) for the maximum and the sum; the lanes are
   // then reduced in order and the tail added one by one.
   constexpr int64_t L = 16;
-  for (int64_t r = 0; r < rows; ++r) {
+  int64_t r = 0;
+  if (n < L)
+    for (; r + 8 <= rows; r += 8) softmax_short_rows_by_eight(x + r * ld, n, ld);
+  for (; r < rows; ++r) {
     float* row = x + r * ld;
     Float8 m0 = splat<Float8>(-INFINITY), m1 = m0;
     int64_t j = 0;
