@@ -1,5 +1,7 @@
 #include "segment/band_ledger.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "core/parallel.h"
 #include "render/visibility.h"
@@ -19,12 +21,18 @@ size_t flagged(const std::vector<uint8_t>& flags) {
 }  // namespace
 
 Image BandLedger::band_in(const Waiting& w, const std::vector<uint8_t>& tiles, int grid_x) {
+  // Only the flagged tiles' pixels are read: a vote often releases a few tiles of a view.
   Image out(w.width, w.height, 1);
-  for (int y = 0; y < w.height; ++y)
-    for (int x = 0; x < w.width; ++x) {
-      const size_t p = size_t(y) * w.width + x;
-      if (w.band[p] && tiles[tile_of(x, y, grid_x)]) out.data[p] = 1.f;
-    }
+  for (size_t t = 0; t < tiles.size(); ++t) {
+    if (!tiles[t]) continue;
+    const int x0 = int(t % size_t(grid_x)) * kTileSize, y0 = int(t / size_t(grid_x)) * kTileSize;
+    const int x1 = std::min(w.width, x0 + kTileSize), y1 = std::min(w.height, y0 + kTileSize);
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const size_t p = size_t(y) * w.width + x;
+        if (w.band[p]) out.data[p] = 1.f;
+      }
+  }
   return out;
 }
 
