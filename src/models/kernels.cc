@@ -114,10 +114,6 @@ inline Float8 load8(const float* p) {
 }
 inline void store8(float* p, Float8 v) { std::memcpy(p, &v, sizeof v); }
 
-}  // namespace
-
-namespace {
-
 // Rows shorter than one 16-lane step: every value goes through the scalar tail, one row
 // at a time. Eight rows at once, one per lane, do the same operations in the same order
 // for each row (the attention of many queries over a few keys: SAM's image-to-token).
