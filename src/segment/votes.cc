@@ -99,7 +99,10 @@ ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const 
       const int x = projects ? int(std::floor(u)) : -1, y = projects ? int(std::floor(v)) : -1;
       const bool in_frame = x >= 0 && y >= 0 && x < mask.width && y < mask.height;
       const double surface = in_frame && have_depth ? double(depth.at(x, y)) : 0.0;
-      const bool hidden = surface > 0 && z > surface * 1.05 + 2.0 * depth_extent(scene, camera, g);
+      // The extent (a covariance per Gaussian) only where the centre lies beyond the 5 %
+      // margin: one within it is never hidden, whatever the extent (it is >= 0).
+      const bool hidden = surface > 0 && z > surface * 1.05 &&
+                          z > surface * 1.05 + 2.0 * depth_extent(scene, camera, g);
       bool counts;
       if (in_frame && mask.at(x, y) > 0.5f) {
         counts = !hidden;
