@@ -306,11 +306,7 @@ bool Segmentation::prefetch_one(int camera, const Progress& progress) {
   spare_fingerprint_ = fingerprint_;
   if (decoder_tried_fingerprint_ != fingerprint_) decoder_tried_.clear();
   decoder_tried_fingerprint_ = fingerprint_;
-  const segment::SegmentView* own = nullptr;
-  for (const segment::SegmentView& v : session_->views())
-    if (v.camera_index == camera) own = &v;
-  for (const segment::SegmentView& v : spare_)
-    if (v.camera_index == camera) own = &v;
+  const segment::SegmentView* own = built_view(camera);
   std::vector<int> wanted;
   if (own) {
     // The user clicks what they look at: a click at the centre stands in for it, and the
