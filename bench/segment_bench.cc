@@ -13,6 +13,9 @@
 // the Gaussians the votes saw) say whether a changed result is better or worse.
 // `--benchmark_filter=LargeScene/6000000` runs one size.
 // BM_RealClick: a click on the real fern fixture's plant (20 views, cached embeddings).
+// BM_VotePass: the tile passes a click runs a few times per view, alone, on one compacted
+// view of the large scene (1000x660): a mask's sums, the same with the selection's
+// coverage at the mask's pixels, and the selection's coverage over its tiles.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -25,11 +28,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "app/demo_scene.h"
 #include "io/gaussian_file.h"
 #include "io/ply.h"
 #include "io/scene_loader.h"
+#include "render/visibility.h"
 #include "segment/packed_votes.h"
 #include "segment/pipeline.h"
 
@@ -385,6 +390,74 @@ void BM_PackedVotesUnpack(benchmark::State& state) {
   state.counters["unpacked_mb"] = double(votes.index.size() * 12) / (1 << 20);
 }
 BENCHMARK(BM_PackedVotesUnpack)->Arg(2600000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// One view of the large scene, compacted as a session keeps it, with the clicked object's
+// true mask (its rendered labels) and the object as the selection.
+struct VoteView {
+  PreparedFrame frame;
+  Image mask;
+  std::vector<float> selection;
+  std::vector<uint8_t> selection_tiles;
+};
+
+VoteView& vote_view(size_t gaussians) {
+  static std::map<size_t, VoteView> cache;
+  auto it = cache.find(gaussians);
+  if (it != cache.end()) return it->second;
+  DemoSceneOptions opt;
+  opt.density = float(gaussians) / 30000.f;
+  opt.cameras = 200;
+  opt.width = 1000;
+  opt.height = 660;
+  const DemoScene demo = make_demo_scene(opt);
+  int cam = 0;
+  double x = 0, y = 0;
+  demo_click(demo, 0, cam, x, y);
+  VoteView& v = cache[gaussians];
+  const std::vector<bool> object = demo_object_mask(demo, 0);
+  v.selection.assign(object.size(), 0.f);
+  for (size_t i = 0; i < object.size(); ++i) v.selection[i] = object[i] ? 1.f : 0.f;
+  RenderSettings rs;
+  rs.color = rs.depth = false;
+  const Camera& camera = demo.bundle.cameras[size_t(cam)];
+  v.frame = prepare_frame(demo.bundle.gaussians, camera, rs);
+  compact_frame(v.frame, rs);
+  const Image rendered = rasterize(v.frame, rs, &v.selection).value;
+  v.mask = Image(camera.width, camera.height, 1);
+  for (size_t i = 0; i < rendered.data.size(); ++i) v.mask.data[i] = rendered.data[i] > 0.5f ? 1.f : 0.f;
+  const size_t tiles = size_t(v.frame.grid_x) * v.frame.grid_y;
+  v.selection_tiles = tiles_listing(v.frame, std::vector<uint8_t>(tiles, 1), object, 0);
+  return v;
+}
+
+// Argument 2: 0 = the mask's sums, 1 = the same pass also rendering the selection's
+// coverage at the mask's pixels (inspection), 2 = the selection's coverage over the tiles
+// that list it (choosing a candidate).
+void BM_VotePass(benchmark::State& state) {
+  VoteView& v = vote_view(size_t(state.range(0)));
+  RenderSettings rs;
+  rs.color = rs.depth = false;
+  const int pass = int(state.range(1));
+  size_t listed = 0;
+  for (auto _ : state) {
+    if (pass == 2) {
+      RenderOutput r = rasterize(v.frame, rs, &v.selection, nullptr, &v.selection_tiles);
+      benchmark::DoNotOptimize(r.value.data.data());
+    } else {
+      Image coverage;
+      GaussianWeights w = weight_sums(v.frame, &v.mask, rs, pass == 1 ? &v.selection : nullptr,
+                                      pass == 1 ? &coverage : nullptr, ValueExtent::kMaskPixels);
+      listed = w.index.size();
+    }
+  }
+  state.counters["listed"] = double(listed);
+  state.counters["frame_mb"] = double(frame_bytes(v.frame)) / 1048576.0;
+}
+BENCHMARK(BM_VotePass)
+    ->ArgsProduct({{6000000}, {0, 1, 2}})
+    ->ArgNames({"gaussians", "pass"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace isegman

@@ -232,6 +232,7 @@ void tile_lanes(const Image* mask, int x_begin, int y_begin, int x_end, int y_en
     }
 }
 
+constexpr size_t kPrefetchAhead = 32;
 template <bool kVisit, bool kSums, bool kShade>
 void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, const float* depths,
                  const uint32_t* list, size_t count,
@@ -286,6 +287,8 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, 
   };
   EntrySum unused;
   for (size_t n = 0; n < count && finished < pixels; ++n) {
+    if (n + kPrefetchAhead < count) __builtin_prefetch(&splats[list[n + kPrefetchAhead]]);
+    if (want_value && n + kPrefetchAhead / 2 < count) __builtin_prefetch(&values[splats[list[n + kPrefetchAhead / 2]].index]);
     const Splat& g = splats[list[n]];
     const float* col = rgb ? rgb + 3 * size_t(list[n]) : kBlack;
     const float depth = kShade ? depths[list[n]] : 0.f;

@@ -221,13 +221,26 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     if (touched[t] || raster[t]) entries += d.tile_start[t + 1] - d.tile_start[t];
   const bool dense = stored && entries > live / 8;
   std::vector<std::vector<uint64_t>> per_splat(dense ? size_t(slots) : 0);
+  // Per worker, a flag per block of kBlock splats that it summed into: the read-out skips
+  // the blocks no worker wrote (a mask's Gaussians are a small share of a large frame's).
+  constexpr size_t kBlockShift = 6, kBlock = size_t(1) << kBlockShift;
+  const size_t blocks = (live + kBlock - 1) / kBlock;
+  std::vector<std::vector<uint8_t>> written(dense ? size_t(slots) : 0);
   std::vector<std::vector<uint32_t>> keys(static_cast<size_t>(slots)), sums(static_cast<size_t>(slots));
   auto add_pairs = [&](int w, size_t t, const uint32_t* entry_sums, bool rest_of_tile) {
     const size_t b = d.tile_start[t], n = d.tile_start[t + 1] - b;
     if (dense) {
       std::vector<uint64_t>& into = per_splat[size_t(w)];
-      if (into.empty()) into = splat_sums().take(live);
-      for (size_t e = 0; e < n; ++e) into[d.tile_list[b + e]] += rest_of_tile ? d.entry_weight[b + e] - entry_sums[e] : entry_sums[e];
+      std::vector<uint8_t>& flags = written[size_t(w)];
+      if (into.empty()) {
+        into = splat_sums().take(live);
+        flags.assign(blocks, 0);
+      }
+      for (size_t e = 0; e < n; ++e) {
+        const uint32_t splat = d.tile_list[b + e];
+        into[splat] += rest_of_tile ? d.entry_weight[b + e] - entry_sums[e] : entry_sums[e];
+        flags[splat >> kBlockShift] = 1;
+      }
       return;
     }
     std::vector<uint32_t>& k = keys[size_t(w)];
@@ -266,20 +279,26 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
 
   if (dense) {
     // Read out in contiguous chunks in parallel, each into its own list, joined in order.
-    const size_t chunks = size_t(slots), per_chunk = (live + chunks - 1) / chunks;
+    const size_t chunks = size_t(slots), blocks_per_chunk = (blocks + chunks - 1) / chunks;
     std::vector<GaussianWeights> parts(chunks);
     parallel_for(chunks, slots, [&](int, size_t c) {
       GaussianWeights& part = parts[c];
-      for (size_t i = c * per_chunk, e = std::min(live, (c + 1) * per_chunk); i < e; ++i) {
-        uint64_t total = 0;
-        for (std::vector<uint64_t>& from : per_splat)
-          if (!from.empty()) {
+      for (size_t k = c * blocks_per_chunk, k_end = std::min(blocks, (c + 1) * blocks_per_chunk); k < k_end; ++k) {
+        bool any = false;
+        for (size_t w = 0; w < per_splat.size(); ++w) any |= !per_splat[w].empty() && written[w][k];
+        if (!any) continue;
+        for (size_t i = k * kBlock, e = std::min(live, (k + 1) * kBlock); i < e; ++i) {
+          uint64_t total = 0;
+          for (size_t w = 0; w < per_splat.size(); ++w) {
+            std::vector<uint64_t>& from = per_splat[w];
+            if (from.empty() || !written[w][k]) continue;
             total += from[i];
             from[i] = 0;  // zeroed for the next pass
           }
-        if (total) {
-          part.index.push_back(d.splats[i].index);
-          part.weight.push_back(int64_t(total));
+          if (total) {
+            part.index.push_back(d.splats[i].index);
+            part.weight.push_back(int64_t(total));
+          }
         }
       }
     });
