@@ -232,6 +232,10 @@ void tile_lanes(const Image* mask, int x_begin, int y_begin, int x_end, int y_en
     }
 }
 
+// A tile's list is in depth order, so its splats (and their values, by Gaussian) are read
+// at random from arrays far larger than the cache in a large scene; the loop asks for
+// them this many entries ahead (the splat) and half as many (its value, once the splat has
+// arrived). A mask's sums over a 6M-Gaussian view: ~42 -> ~33 ms (BM_VotePass).
 constexpr size_t kPrefetchAhead = 32;
 template <bool kVisit, bool kSums, bool kShade>
 void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, const float* depths,
