@@ -341,11 +341,14 @@ std::vector<uint8_t> tiles_listing(const PreparedFrame& frame, const std::vector
   std::vector<uint8_t> out(n, 0);
   parallel_for(n, threads, [&](int, size_t t) {
     if (!tiles[t]) return;
-    for (uint32_t e = d.tile_start[t]; e < d.tile_start[t + 1]; ++e)
+    const uint32_t end = d.tile_start[t + 1];
+    for (uint32_t e = d.tile_start[t]; e < end; ++e) {
+      if (e + 16 < end) __builtin_prefetch(&d.splats[d.tile_list[e + 16]]);  // read at random, as in the tile loop
       if (wanted[d.splats[d.tile_list[e]].index]) {
         out[t] = 1;
         return;
       }
+    }
   });
   return out;
 }

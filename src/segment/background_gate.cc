@@ -232,31 +232,51 @@ bool surroundings_plane(const std::vector<std::pair<uint32_t, float>>& ring, int
 
 }  // namespace
 
-double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVotes& votes, double share) {
-  std::vector<std::pair<double, double>> dw(votes.index.size());
-  double total = 0;
-  for (size_t k = 0; k < votes.index.size(); ++k) {
-    const uint32_t g = votes.index[k];
-    dw[k] = {camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]}).z,
-             double(votes.weight[k])};
-    total += dw[k].second;
-  }
-  if (dw.empty()) return 0.0;
+double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVotes& votes, double share, int threads) {
+  const size_t n = votes.index.size();
+  if (n == 0) return 0.0;
+  std::vector<std::pair<double, double>> dw(n);
+  parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) {
+      const uint32_t g = votes.index[k];
+      dw[k] = {camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]}).z,
+               double(votes.weight[k])};
+    }
+  });
   // The first entry in (depth, weight) order whose running weight reaches the target, as a
-  // walk over the sorted list would find it, by selection instead of a sort (linear: a
-  // large scene's mask holds ~10^6 Gaussians a view). The weights are whole numbers of
-  // fixed-point units, so their sums are exact in any order.
+  // walk over the sorted list would find it, without a sort (a large scene's mask holds ~10^6
+  // Gaussians a view). The weights are whole numbers of fixed-point units, so their sums are
+  // exact in any order. A histogram over depth (bins in depth order: the binning is monotone)
+  // finds the bin the running weight reaches the target in; only that bin's entries are
+  // then ordered, by selection.
+  double total = 0, lo_depth = dw[0].first, hi_depth = dw[0].first;
+  for (const auto& [d, w] : dw) {
+    total += w;
+    lo_depth = std::min(lo_depth, d);
+    hi_depth = std::max(hi_depth, d);
+  }
   const double target = share * total;
-  size_t lo = 0, hi = dw.size();
-  double before = 0;  // the weight of the entries ordered before dw[lo]
-  double found = std::max_element(dw.begin(), dw.end())->first;
+  constexpr int kBins = 4096;
+  const double per_depth = hi_depth > lo_depth ? kBins / (hi_depth - lo_depth) : 0.0;
+  auto bin_of = [&](double d) { return std::min(kBins - 1, int((d - lo_depth) * per_depth)); };
+  std::vector<double> hist(kBins, 0.0);
+  for (const auto& [d, w] : dw) hist[size_t(bin_of(d))] += w;
+  int bin = 0;
+  double before = 0;  // the weight of the entries ordered before the bin's
+  while (bin < kBins - 1 && before + hist[size_t(bin)] < target) before += hist[size_t(bin++)];
+  std::vector<std::pair<double, double>> in_bin;
+  for (const auto& e : dw)
+    if (bin_of(e.first) == bin) in_bin.push_back(e);
+  size_t lo = 0, hi = in_bin.size();
+  double found = hi_depth;
   while (lo < hi) {
     const size_t mid = lo + (hi - lo) / 2;
-    std::nth_element(dw.begin() + std::ptrdiff_t(lo), dw.begin() + std::ptrdiff_t(mid), dw.begin() + std::ptrdiff_t(hi));
+    std::nth_element(in_bin.begin() + std::ptrdiff_t(lo), in_bin.begin() + std::ptrdiff_t(mid),
+                     in_bin.begin() + std::ptrdiff_t(hi));
     double through = before;
-    for (size_t k = lo; k <= mid; ++k) through += dw[k].second;
+    for (size_t k = lo; k <= mid; ++k) through += in_bin[k].second;
     if (through >= target) {
-      found = dw[mid].first;
+      found = in_bin[mid].first;
       hi = mid;
     } else {
       before = through;

@@ -60,7 +60,9 @@ struct BackgroundOptions {
 
 // The camera depth below which `share` of the votes' weight lies: the target's near side in
 // the view (the background's samples must lie beyond it).
-double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVotes& votes, double share);
+// `threads`: workers for the depths (0: every core); the result does not depend on it.
+double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVotes& votes, double share,
+                  int threads = 1);
 
 // The surroundings' inverse depth per pixel of mask > 0.5, 0 where there is no estimate.
 // Along the row, the column and both diagonals through the pixel, the nearest usable pixels

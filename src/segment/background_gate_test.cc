@@ -404,15 +404,20 @@ TEST(BackgroundGate, NearDepthIsTheWeightedNearSide) {
 }
 
 TEST(BackgroundGate, NearDepthMatchesTheSortedWalk) {
-  // Many Gaussians on a few depths (ties) with uneven weights: the selection finds the same
-  // depth as walking the (depth, weight)-sorted list until the running weight reaches the share.
+  // Many Gaussians on a few depths (ties), or on depths spread over a range with a few far
+  // outliers (the histogram's bins then hold uneven shares), with uneven weights: the
+  // selection finds the same depth as walking the (depth, weight)-sorted list until the
+  // running weight reaches the share, on one worker and on all.
   SplitMix64 rng(7);
-  for (int trial = 0; trial < 20; ++trial) {
+  for (int trial = 0; trial < 40; ++trial) {
     GateScene s;
-    const int n = 1 + int(rng.next() % 400);
+    const bool spread = trial % 2 == 1;
+    const int n = 1 + int(rng.next() % (spread ? 20000 : 400));
     s.positive = ViewVotes{};
     for (int i = 0; i < n; ++i) {
-      s.add(0, 0, 2.0 + double(rng.next() % 9) * 0.25, 0.01, 0.01, 0.01);
+      const double z = spread ? (rng.next() % 50 == 0 ? 40.0 + double(rng.next() % 1000) : 2.0 + double(rng.next() % 100000) * 1e-5)
+                              : 2.0 + double(rng.next() % 9) * 0.25;
+      s.add(0, 0, z, 0.01, 0.01, 0.01);
       s.positive.weight.back() = int64_t(1 + rng.next() % 5000);
     }
     for (double share : {0.0, 0.05, 0.5, 0.97, 1.0}) {
@@ -433,6 +438,7 @@ TEST(BackgroundGate, NearDepthMatchesTheSortedWalk) {
           break;
         }
       EXPECT_EQ(near_depth(s.scene, s.cam, s.positive, share), walk) << "trial " << trial << " share " << share;
+      EXPECT_EQ(near_depth(s.scene, s.cam, s.positive, share, 0), walk) << "trial " << trial << " share " << share;
     }
   }
 }

@@ -9,33 +9,64 @@
 namespace isegman::segment {
 
 std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std::vector<double>& weight,
-                                     const DepthLayerOptions& o, const std::vector<float>* extent) {
+                                     const DepthLayerOptions& o, const std::vector<float>* extent, int threads) {
   std::vector<DepthLayer> layers;
+  // Chunks of samples in parallel, each with its own partial figures. The weights are whole
+  // numbers of fixed-point units, so their sums are exact in any order, and so is the result.
+  const size_t n = depth.size();
+  const size_t chunks = std::max<size_t>(1, (n + kListGrain - 1) / kListGrain);
+  struct Span {
+    double total = 0, lo = 1e300, hi = 0;
+  };
+  std::vector<Span> spans(chunks);
+  parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
+    Span& sp = spans[begin / kListGrain];
+    for (size_t i = begin; i < end; ++i) {
+      if (!(depth[i] > 0) || !(weight[i] > 0)) continue;
+      sp.total += weight[i];
+      sp.lo = std::min(sp.lo, double(depth[i]));
+      sp.hi = std::max(sp.hi, double(depth[i]));
+    }
+  });
   double total = 0, lo = 1e300, hi = 0;
-  for (size_t i = 0; i < depth.size(); ++i) {
-    if (!(depth[i] > 0) || !(weight[i] > 0)) continue;
-    total += weight[i];
-    lo = std::min(lo, double(depth[i]));
-    hi = std::max(hi, double(depth[i]));
+  for (const Span& sp : spans) {
+    total += sp.total;
+    lo = std::min(lo, sp.lo);
+    hi = std::max(hi, sp.hi);
   }
   if (total <= 0) return layers;
   // Histogram over log depth: a gap of min_gap is the same share of depth near and far.
   const double step = std::log1p(o.bin);
   const int bins = std::max(1, int(std::ceil((std::log(hi) - std::log(lo)) / step)) + 1);
-  std::vector<double> hist(size_t(bins), 0.0);
   const double log_lo = std::log(lo);  // once, not per sample (the same value)
   auto bin_of = [&](double z) { return std::clamp(int((std::log(z) - log_lo) / step), 0, bins - 1); };
-  for (size_t i = 0; i < depth.size(); ++i)
-    if (depth[i] > 0 && weight[i] > 0) hist[size_t(bin_of(depth[i]))] += weight[i];
   // Bins inside the depth extent of a Gaussian that matters are not empty either.
-  std::vector<char> covered(size_t(bins), 0);
-  if (extent && o.extent_sigmas > 0)
-    for (size_t i = 0; i < depth.size(); ++i) {
-      if (!(depth[i] > 0) || weight[i] < o.empty_share * total) continue;
+  const bool extents = extent && o.extent_sigmas > 0;
+  std::vector<std::vector<double>> hists(chunks);
+  std::vector<std::vector<char>> covers(chunks);
+  parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
+    std::vector<double>& h = hists[begin / kListGrain];
+    std::vector<char>& c = covers[begin / kListGrain];
+    h.assign(size_t(bins), 0.0);
+    c.assign(size_t(bins), 0);
+    for (size_t i = begin; i < end; ++i) {
+      if (!(depth[i] > 0)) continue;
+      if (weight[i] > 0) h[size_t(bin_of(depth[i]))] += weight[i];
+      if (!extents || weight[i] < o.empty_share * total) continue;
       const double r = o.extent_sigmas * double((*extent)[i]);
       const int b0 = bin_of(std::max(lo, double(depth[i]) - r)), b1 = bin_of(std::min(hi, double(depth[i]) + r));
-      for (int b = b0; b <= b1; ++b) covered[size_t(b)] = 1;
+      for (int b = b0; b <= b1; ++b) c[size_t(b)] = 1;
     }
+  });
+  std::vector<double> hist(size_t(bins), 0.0);
+  std::vector<char> covered(size_t(bins), 0);
+  for (size_t k = 0; k < chunks; ++k) {
+    if (hists[k].empty()) continue;
+    for (int b = 0; b < bins; ++b) {
+      hist[size_t(b)] += hists[k][size_t(b)];
+      covered[size_t(b)] |= covers[k][size_t(b)];
+    }
+  }
   const int gap_bins = std::max(1, int(std::ceil(std::log1p(o.min_gap) / step)));
   int start = -1, last = -1;
   double w = 0;
@@ -83,9 +114,29 @@ bool keep_local_layers(int gx, int gy, const std::vector<int32_t>& region, const
                        const std::vector<float>& extent, const std::vector<double>& weight,
                        const std::vector<char>& selected,
                        const DepthLayerOptions& o, std::vector<char>& keep, int threads) {
-  std::vector<std::vector<size_t>> members(size_t(gx) * gy);
-  for (size_t k = 0; k < region.size(); ++k)
-    if (region[k] >= 0) members[size_t(region[k])].push_back(k);
+  // Each region's entries, ascending (one array, ranges per region: a region list apiece
+  // would cost an allocation per region and view).
+  const size_t regions = size_t(gx) * gy;
+  std::vector<uint32_t> first(regions + 1, 0);
+  for (int32_t r : region)
+    if (r >= 0) ++first[size_t(r) + 1];
+  for (size_t r = 0; r < regions; ++r) first[r + 1] += first[r];
+  std::vector<uint32_t> entries(first[regions]);
+  {
+    std::vector<uint32_t> fill(first.begin(), first.end() - 1);
+    for (size_t k = 0; k < region.size(); ++k)
+      if (region[k] >= 0) entries[fill[size_t(region[k])]++] = uint32_t(k);
+  }
+  struct Members {
+    const uint32_t *b, *e;
+    const uint32_t* begin() const { return b; }
+    const uint32_t* end() const { return e; }
+    bool empty() const { return b == e; }
+    size_t size() const { return size_t(e - b); }
+    uint32_t operator[](size_t i) const { return b[i]; }
+  };
+  std::vector<Members> members(regions);
+  for (size_t r = 0; r < regions; ++r) members[r] = {entries.data() + first[r], entries.data() + first[r + 1]};
   struct Range { double lo = 1e300, hi = -1e300; bool set() const { return hi >= lo; } };
   std::vector<std::vector<DepthLayer>> layers(members.size());
   std::vector<std::vector<int>> layer_index(members.size());
@@ -190,7 +241,7 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
         region[k] = std::clamp(int(std::floor(v / R)), 0, gy - 1) * gx + std::clamp(int(std::floor(u / R)), 0, gx - 1);
     }
   });
-  const std::vector<DepthLayer> layers = depth_layers(depth, weight, o, &extent);
+  const std::vector<DepthLayer> layers = depth_layers(depth, weight, o, &extent, threads);
   rep.layers = int(layers.size());
   std::vector<char> keep;
   if (selection && o.region > 0 && keep_local_layers(gx, gy, region, depth, extent, weight, selected, o, keep, threads)) {

@@ -40,10 +40,11 @@ struct DepthLayer {
 };
 
 // Layers of (depth, weight) samples, near to far. `extent` (optional, one per sample): the
-// standard deviation of the sample's depth (see extent_sigmas).
+// standard deviation of the sample's depth (see extent_sigmas). The weights are whole
+// numbers (fixed-point vote units): `threads` (0: every core) then changes nothing but speed.
 std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std::vector<double>& weight,
                                      const DepthLayerOptions& options = {},
-                                     const std::vector<float>* extent = nullptr);
+                                     const std::vector<float>* extent = nullptr, int threads = 1);
 
 // Standard deviation of Gaussian g's camera-space depth (its 3D covariance along the view axis).
 float depth_extent(const GaussianScene& scene, const Camera& camera, size_t g);

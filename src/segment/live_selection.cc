@@ -45,16 +45,29 @@ const std::vector<uint32_t>& LiveSelection::support() const {
 }
 
 void LiveSelection::decide(const VoteAccumulator& votes) {
-  for (uint32_t i : members_) set(i, false);
-  members_.clear();
+  std::vector<uint32_t>& now = next_members_;
+  now.clear();
   auto visit = [&](uint32_t i) {
-    if (votes.selects(i, rule_.tau, min_fixed_, rule_.centre, rule_.whole)) members_.push_back(i);
+    if (votes.selects(i, rule_.tau, min_fixed_, rule_.centre, rule_.whole)) now.push_back(i);
   };
   if (everyone_)
     for (uint32_t i = 0; i < uint32_t(votes.size()); ++i) visit(i);
   else
     for_each_supported(visit);
-  for (uint32_t i : members_) set(i, true);
+  // Both lists ascending: only the Gaussians that left or joined change their forms (a view
+  // changes a few of the ~10^6 members of a large scene's selection).
+  size_t a = 0, b = 0;
+  while (a < members_.size() || b < now.size()) {
+    if (b == now.size() || (a < members_.size() && members_[a] < now[b])) {
+      set(members_[a++], false);
+    } else if (a == members_.size() || now[b] < members_[a]) {
+      set(now[b++], true);
+    } else {
+      ++a;
+      ++b;
+    }
+  }
+  members_.swap(now);
 }
 
 }  // namespace isegman::segment

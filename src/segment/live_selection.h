@@ -60,6 +60,7 @@ class LiveSelection {
   std::vector<bool> strong_, eligible_;
   std::vector<float> values_;
   std::vector<uint32_t> members_;
+  std::vector<uint32_t> next_members_;  // decide's new list, kept for its capacity
   // The support as one bit per Gaussian: a view's votes set their bits in O(their count);
   // merging sorted lists instead cost O(support) a view (~1M entries at 6M Gaussians).
   std::vector<uint64_t> support_bits_;

@@ -823,7 +823,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       TimeInto timed{part.background};
       // Background pixels must not be nearer than the target: outside the mask, nearer
       // things are occluders (or the object itself), not the surface behind it.
-      const double near = near_depth(scene_, view.camera, vs.positive, 0.05);
+      const double near = near_depth(scene_, view.camera, vs.positive, 0.05, o.threads);
       const double near_limit = near * (1 - o.background_options.occluder_margin);
       const Image bg = background_inverse_depth(mask, view.depth, view.alpha, near_limit, o.background_options, o.threads);
       const SurroundingsSurface surface = surroundings_surface(scene_, view.camera, mask, view.depth, view.alpha,
