@@ -114,53 +114,53 @@ bool keep_local_layers(int gx, int gy, const std::vector<int32_t>& region, const
                        const std::vector<float>& extent, const std::vector<double>& weight,
                        const std::vector<char>& selected,
                        const DepthLayerOptions& o, std::vector<char>& keep, int threads) {
-  // Each region's entries, ascending (one array, ranges per region: a region list apiece
-  // would cost an allocation per region and view).
+  // Each region's entries, ascending, and their samples gathered beside them: one array per
+  // figure, a range per region. A region's members lie scattered over the view's entries
+  // (megabytes at millions of Gaussians), and reading them in place missed the cache at
+  // nearly every sample; so did a list apiece, an allocation per region and view.
   const size_t regions = size_t(gx) * gy;
   std::vector<uint32_t> first(regions + 1, 0);
   for (int32_t r : region)
     if (r >= 0) ++first[size_t(r) + 1];
   for (size_t r = 0; r < regions; ++r) first[r + 1] += first[r];
-  std::vector<uint32_t> entries(first[regions]);
+  const size_t placed = first[regions];
+  std::vector<uint32_t> entries(placed);
+  std::vector<float> z(placed), e(placed);
+  std::vector<double> w(placed);
+  std::vector<char> sel_entry(placed);
   {
     std::vector<uint32_t> fill(first.begin(), first.end() - 1);
-    for (size_t k = 0; k < region.size(); ++k)
-      if (region[k] >= 0) entries[fill[size_t(region[k])]++] = uint32_t(k);
+    for (size_t k = 0; k < region.size(); ++k) {
+      if (region[k] < 0) continue;
+      const uint32_t p = fill[size_t(region[k])]++;
+      entries[p] = uint32_t(k);
+      z[p] = depth[k];
+      e[p] = extent[k];
+      w[p] = weight[k];
+      sel_entry[p] = selected[k];
+    }
   }
-  struct Members {
-    const uint32_t *b, *e;
-    const uint32_t* begin() const { return b; }
-    const uint32_t* end() const { return e; }
-    bool empty() const { return b == e; }
-    size_t size() const { return size_t(e - b); }
-    uint32_t operator[](size_t i) const { return b[i]; }
-  };
-  std::vector<Members> members(regions);
-  for (size_t r = 0; r < regions; ++r) members[r] = {entries.data() + first[r], entries.data() + first[r + 1]};
   struct Range { double lo = 1e300, hi = -1e300; bool set() const { return hi >= lo; } };
-  std::vector<std::vector<DepthLayer>> layers(members.size());
-  std::vector<std::vector<int>> layer_index(members.size());
-  std::vector<Range> source(members.size());
-  std::vector<int> distance(members.size(), -1);
+  std::vector<std::vector<DepthLayer>> layers(regions);
+  std::vector<int> layer_index(placed, -1);
+  std::vector<Range> source(regions);
+  std::vector<int> distance(regions, -1);
   keep.assign(region.size(), 0);
   // Regions on their own, in parallel: each writes its own entries and its members' keep.
-  parallel_for(members.size(), threads, [&](int, size_t r) {
-    if (members[r].empty()) return;
-    std::vector<float> z, e;
-    std::vector<double> w;
-    for (size_t k : members[r]) {
-      z.push_back(depth[k]);
-      e.push_back(extent[k]);
-      w.push_back(weight[k]);
-    }
-    layers[r] = depth_layers(z, w, o, &e);
+  parallel_for(regions, threads, [&](int, size_t r) {
+    const size_t b = first[r], end = first[r + 1];
+    if (b == end) return;
+    const std::vector<float> rz(z.begin() + std::ptrdiff_t(b), z.begin() + std::ptrdiff_t(end)),
+        re(e.begin() + std::ptrdiff_t(b), e.begin() + std::ptrdiff_t(end));
+    const std::vector<double> rw(w.begin() + std::ptrdiff_t(b), w.begin() + std::ptrdiff_t(end));
+    layers[r] = depth_layers(rz, rw, o, &re);
     std::vector<double> sel(layers[r].size(), 0.0), all(layers[r].size(), 0.0);
-    for (size_t k : members[r]) {
-      const int l = layer_of(layers[r], depth[k]);
-      layer_index[r].push_back(l);
+    for (size_t p = b; p < end; ++p) {
+      const int l = layer_of(layers[r], z[p]);
+      layer_index[p] = l;
       if (l < 0) continue;
-      all[size_t(l)] += weight[k];
-      if (selected[k]) sel[size_t(l)] += weight[k];
+      all[size_t(l)] += w[p];
+      if (sel_entry[p]) sel[size_t(l)] += w[p];
     }
     // A layer only a few stray selected Gaussians reach (a leak) is not kept: a region
     // none of whose layers is mostly selected is judged like a region the selection misses.
@@ -172,12 +172,12 @@ bool keep_local_layers(int gx, int gy, const std::vector<int32_t>& region, const
       source[r].hi = std::max(source[r].hi, layers[r][l].far);
     }
     if (!source[r].set()) return;
-    for (size_t i = 0; i < members[r].size(); ++i)
-      if (layer_index[r][i] >= 0 && kept_layer[size_t(layer_index[r][i])]) keep[members[r][i]] = 1;
+    for (size_t p = b; p < end; ++p)
+      if (layer_index[p] >= 0 && kept_layer[size_t(layer_index[p])]) keep[entries[p]] = 1;
     distance[r] = 0;
   });
   std::vector<size_t> wave;
-  for (size_t r = 0; r < members.size(); ++r)
+  for (size_t r = 0; r < regions; ++r)
     if (distance[r] == 0) wave.push_back(r);
   if (wave.empty()) return false;
   // Regions the selection does not reach take the kept depth range of the nearest regions
@@ -202,12 +202,12 @@ bool keep_local_layers(int gx, int gy, const std::vector<int32_t>& region, const
     }
     wave = std::move(next);
   }
-  for (size_t r = 0; r < members.size(); ++r) {
-    if (members[r].empty() || source[r].set() || !reference[r].set()) continue;
+  for (size_t r = 0; r < regions; ++r) {
+    if (first[r] == first[r + 1] || source[r].set() || !reference[r].set()) continue;
     const double lo = reference[r].lo * (1 - o.margin), hi = reference[r].hi * (1 + o.margin);
-    for (size_t i = 0; i < members[r].size(); ++i) {
-      const int l = layer_index[r][i];
-      if (l >= 0 && layers[r][size_t(l)].far >= lo && layers[r][size_t(l)].near <= hi) keep[members[r][i]] = 1;
+    for (size_t p = first[r]; p < first[r + 1]; ++p) {
+      const int l = layer_index[p];
+      if (l >= 0 && layers[r][size_t(l)].far >= lo && layers[r][size_t(l)].near <= hi) keep[entries[p]] = 1;
     }
   }
   return true;
