@@ -360,10 +360,12 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
   if (chunk_out.size() < chunks) chunk_out.resize(chunks);
   for (auto& v : chunk_out) v.clear();  // stale entries past `chunks` stay empty
   parallel_for(chunks, s.threads, [&](int, size_t c) {
-    std::vector<Projected>& v = chunk_out[c];
+    // Grown as a local (the chunks' vectors share cache lines) and moved back.
+    std::vector<Projected> v = std::move(chunk_out[c]);
     Projected sp;
     for (size_t i = c * kChunk, e = std::min(N, (c + 1) * kChunk); i < e; ++i)
       if (preprocess_one(scene, i, cam, s, degree, grid_x, grid_y, sp)) v.push_back(sp);
+    chunk_out[c] = std::move(v);
   });
   size_t visible = 0;
   for (const auto& v : chunk_out) visible += v.size();

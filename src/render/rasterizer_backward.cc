@@ -339,13 +339,14 @@ void diff_render_forward(const GaussianParams<Real>& P, const Camera& camera, co
   const size_t chunks = (N + kChunk - 1) / kChunk;
   std::vector<std::vector<DSplat<Real>>> chunk_out(chunks);
   parallel_for(chunks, s.threads, [&](int, size_t c) {
-    auto& v = chunk_out[c];
+    std::vector<DSplat<Real>> v;  // a local, moved in at the end: the chunks' vectors share cache lines
     Projected<Real> f;
     DSplat<Real> sp;
     for (size_t i = c * kChunk, e = std::min(N, (c + 1) * kChunk); i < e; ++i)
       if (project_gaussian(P, i, cam, Real(s.near_plane), Real(s.blur), degree, f) &&
           make_splat(f, i, slot[i], W, H, grid_x, grid_y, sp))
         v.push_back(sp);
+    chunk_out[c] = std::move(v);
   });
   size_t visible = 0;
   for (const auto& v : chunk_out) visible += v.size();
@@ -518,7 +519,7 @@ void diff_render_backward(const GaussianParams<Real>& P, const Camera& camera, c
           Tbg[c][k] = T[k] * bg[c];
         }
       }
-    auto& out = tile_grads[t];
+    auto out = std::move(tile_grads[t]);  // grown as a local: neighbouring tiles' lists share cache lines
     for (size_t n = max_last; n-- > front;) {
       const auto& g = splats[list[n]];
       const bool diff = g.slot >= 0;
@@ -559,6 +560,7 @@ void diff_render_backward(const GaussianParams<Real>& P, const Camera& camera, c
         }
       if (diff && touched) out.push_back({list[n], acc});
     }
+    tile_grads[t] = std::move(out);
   });
 
   // 2. Reduce per splat in tile order (deterministic), then chain to the parameters.

@@ -236,15 +236,18 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
         into = splat_sums().take(live);
         flags.assign(blocks, 0);
       }
+      uint64_t* to = into.data();  // raw pointers: a byte store could alias the vectors' own fields
+      uint8_t* marks = flags.data();
       for (size_t e = 0; e < n; ++e) {
         const uint32_t splat = d.tile_list[b + e];
-        into[splat] += rest_of_tile ? d.entry_weight[b + e] - entry_sums[e] : entry_sums[e];
-        flags[splat >> kBlockShift] = 1;
+        to[splat] += rest_of_tile ? d.entry_weight[b + e] - entry_sums[e] : entry_sums[e];
+        marks[splat >> kBlockShift] = 1;
       }
       return;
     }
-    std::vector<uint32_t>& k = keys[size_t(w)];
-    std::vector<uint32_t>& s = sums[size_t(w)];
+    // Grown as locals: the workers' vectors sit side by side, and growing them in place would
+    // write a cache line the other worker writes too at every pair (false sharing).
+    std::vector<uint32_t> k = std::move(keys[size_t(w)]), s = std::move(sums[size_t(w)]);
     for (size_t e = 0; e < n; ++e) {
       const uint32_t v = rest_of_tile ? d.entry_weight[b + e] - entry_sums[e] : entry_sums[e];
       if (v) {
@@ -252,6 +255,8 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
         s.push_back(v);
       }
     }
+    keys[size_t(w)] = std::move(k);
+    sums[size_t(w)] = std::move(s);
   };
   if (any_raster) {
     RenderSettings rs = settings;
@@ -282,7 +287,7 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     const size_t chunks = size_t(slots), blocks_per_chunk = (blocks + chunks - 1) / chunks;
     std::vector<GaussianWeights> parts(chunks);
     parallel_for(chunks, slots, [&](int, size_t c) {
-      GaussianWeights& part = parts[c];
+      GaussianWeights part;  // a local, moved in at the end: the parts share cache lines
       for (size_t k = c * blocks_per_chunk, k_end = std::min(blocks, (c + 1) * blocks_per_chunk); k < k_end; ++k) {
         bool any = false;
         for (size_t w = 0; w < per_splat.size(); ++w) any |= !per_splat[w].empty() && written[w][k];
@@ -301,6 +306,7 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
           }
         }
       }
+      parts[c] = std::move(part);
     });
     for (std::vector<uint64_t>& from : per_splat)
       if (!from.empty()) splat_sums().give_back(std::move(from));

@@ -428,7 +428,7 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
   const size_t chunks = (n + kListGrain - 1) / kListGrain;
   std::vector<std::vector<std::pair<double, double>>> found(chunks);
   parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
-    std::vector<std::pair<double, double>>& out = found[begin / kListGrain];
+    std::vector<std::pair<double, double>> out;  // moved in at the end: the chunks' vectors share cache lines
     for (size_t s = begin; s < end; ++s) {
       const size_t k = s * stride;
       double u, v, cz;
@@ -442,6 +442,7 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
       if (!(alpha.data[p] > 0.5f) || !(z > 0) || z < near_limit) continue;
       out.push_back({z / cz - 1, double(total.weight[k])});  // (1/cz) / (1/z) - 1
     }
+    found[begin / kListGrain] = std::move(out);
   });
   std::vector<std::pair<double, double>> all;
   for (auto& f : found) all.insert(all.end(), f.begin(), f.end());

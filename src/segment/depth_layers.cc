@@ -20,13 +20,14 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
   };
   std::vector<Span> spans(chunks);
   parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
-    Span& sp = spans[begin / kListGrain];
+    Span sp;  // in registers: the chunks' spans share cache lines
     for (size_t i = begin; i < end; ++i) {
       if (!(depth[i] > 0) || !(weight[i] > 0)) continue;
       sp.total += weight[i];
       sp.lo = std::min(sp.lo, double(depth[i]));
       sp.hi = std::max(sp.hi, double(depth[i]));
     }
+    spans[begin / kListGrain] = sp;
   });
   double total = 0, lo = 1e300, hi = 0;
   for (const Span& sp : spans) {
