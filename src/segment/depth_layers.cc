@@ -234,7 +234,6 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
       const uint32_t g = positive.index[k];
       const Vec3 centre{scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]};
       depth[k] = float(camera.world_to_camera(centre).z);
-      extent[k] = depth_extent(scene, camera, g);
       weight[k] = double(positive.weight[k]);
       if (selection) selected[k] = (*selection)[g];
       double u = 0, v = 0;
@@ -242,6 +241,28 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
         region[k] = std::clamp(int(std::floor(v / R)), 0, gy - 1) * gx + std::clamp(int(std::floor(u / R)), 0, gx - 1);
     }
   });
+  // Depth extents (a covariance each) only where depth_layers reads them: a sample holding at
+  // least empty_share of the weight of the layers it is split into, all of the mask's or (for
+  // local layers) its region's. The totals are sums of whole numbers, the same as
+  // depth_layers' own; elsewhere the extent stays 0, unread.
+  if (o.extent_sigmas > 0) {
+    const bool local = selection && o.region > 0;
+    double total = 0;
+    std::vector<double> region_total(local ? size_t(gx) * gy : 0, 0.0);
+    for (size_t k = 0; k < n; ++k) {
+      if (!(depth[k] > 0) || !(weight[k] > 0)) continue;
+      total += weight[k];
+      if (local && region[k] >= 0) region_total[size_t(region[k])] += weight[k];
+    }
+    parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
+      for (size_t k = begin; k < end; ++k) {
+        if (!(depth[k] > 0)) continue;
+        const bool read = !(weight[k] < o.empty_share * total) ||
+                          (local && region[k] >= 0 && !(weight[k] < o.empty_share * region_total[size_t(region[k])]));
+        if (read) extent[k] = depth_extent(scene, camera, positive.index[k]);
+      }
+    });
+  }
   const std::vector<DepthLayer> layers = depth_layers(depth, weight, o, &extent, threads);
   rep.layers = int(layers.size());
   std::vector<char> keep;
