@@ -8,6 +8,18 @@
 
 namespace isegman::segment {
 
+namespace {
+// A sample that counts toward the layers' weight (and their total): in front of the camera,
+// with weight.
+bool counts(float depth, double weight) { return depth > 0 && weight > 0; }
+// Whether depth_layers reads a sample's depth extent, given the total weight of the samples
+// it splits: only one holding at least empty_share of it fills bins with its extent.
+// gate_by_depth computes extents only where this holds.
+bool reads_extent(float depth, double weight, double total, const DepthLayerOptions& o) {
+  return depth > 0 && !(weight < o.empty_share * total);
+}
+}  // namespace
+
 std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std::vector<double>& weight,
                                      const DepthLayerOptions& o, const std::vector<float>* extent, int threads) {
   std::vector<DepthLayer> layers;
@@ -22,7 +34,7 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
   parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
     Span sp;  // in registers: the chunks' spans share cache lines
     for (size_t i = begin; i < end; ++i) {
-      if (!(depth[i] > 0) || !(weight[i] > 0)) continue;
+      if (!counts(depth[i], weight[i])) continue;
       sp.total += weight[i];
       sp.lo = std::min(sp.lo, double(depth[i]));
       sp.hi = std::max(sp.hi, double(depth[i]));
@@ -51,9 +63,8 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
     h.assign(size_t(bins), 0.0);
     c.assign(size_t(bins), 0);
     for (size_t i = begin; i < end; ++i) {
-      if (!(depth[i] > 0)) continue;
-      if (weight[i] > 0) h[size_t(bin_of(depth[i]))] += weight[i];
-      if (!extents || weight[i] < o.empty_share * total) continue;
+      if (counts(depth[i], weight[i])) h[size_t(bin_of(depth[i]))] += weight[i];
+      if (!extents || !reads_extent(depth[i], weight[i], total, o)) continue;
       const double r = o.extent_sigmas * double((*extent)[i]);
       const int b0 = bin_of(std::max(lo, double(depth[i]) - r)), b1 = bin_of(std::min(hi, double(depth[i]) + r));
       for (int b = b0; b <= b1; ++b) c[size_t(b)] = 1;
@@ -250,15 +261,14 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
     double total = 0;
     std::vector<double> region_total(local ? size_t(gx) * gy : 0, 0.0);
     for (size_t k = 0; k < n; ++k) {
-      if (!(depth[k] > 0) || !(weight[k] > 0)) continue;
+      if (!counts(depth[k], weight[k])) continue;
       total += weight[k];
       if (local && region[k] >= 0) region_total[size_t(region[k])] += weight[k];
     }
     parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
       for (size_t k = begin; k < end; ++k) {
-        if (!(depth[k] > 0)) continue;
-        const bool read = !(weight[k] < o.empty_share * total) ||
-                          (local && region[k] >= 0 && !(weight[k] < o.empty_share * region_total[size_t(region[k])]));
+        const bool read = reads_extent(depth[k], weight[k], total, o) ||
+                          (local && region[k] >= 0 && reads_extent(depth[k], weight[k], region_total[size_t(region[k])], o));
         if (read) extent[k] = depth_extent(scene, camera, positive.index[k]);
       }
     });
