@@ -293,7 +293,9 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
 
   if (dense) {
     // Read out in contiguous chunks in parallel, each into its own list, joined in order.
-    const size_t chunks = size_t(slots), blocks_per_chunk = (blocks + chunks - 1) / chunks;
+    // Many more chunks than workers: the written blocks bunch together (an object's
+    // Gaussians sit side by side), so one chunk per worker left one worker all of them.
+    const size_t chunks = std::max<size_t>(1, std::min(blocks, size_t(slots) * 32)), blocks_per_chunk = (blocks + chunks - 1) / chunks;
     std::vector<GaussianWeights> parts(chunks);
     parallel_for(chunks, slots, [&](int, size_t c) {
       GaussianWeights part;  // a local, moved in at the end: the parts share cache lines

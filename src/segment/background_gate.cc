@@ -249,24 +249,53 @@ double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVo
   // exact in any order. A histogram over depth (bins in depth order: the binning is monotone)
   // finds the bin the running weight reaches the target in; only that bin's entries are
   // then ordered, by selection.
+  // Each of the three passes runs in parallel chunks, merged in chunk order (whole-number
+  // sums and extrema: the same in any order).
+  const size_t chunks = (n + kListGrain - 1) / kListGrain;
+  std::vector<double> chunk_total(chunks, 0.0), chunk_lo(chunks, dw[0].first), chunk_hi(chunks, dw[0].first);
+  parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
+    double t = 0, lo_d = dw[begin].first, hi_d = dw[begin].first;
+    for (size_t k = begin; k < end; ++k) {
+      t += dw[k].second;
+      lo_d = std::min(lo_d, dw[k].first);
+      hi_d = std::max(hi_d, dw[k].first);
+    }
+    const size_t c = begin / kListGrain;
+    chunk_total[c] = t;
+    chunk_lo[c] = lo_d;
+    chunk_hi[c] = hi_d;
+  });
   double total = 0, lo_depth = dw[0].first, hi_depth = dw[0].first;
-  for (const auto& [d, w] : dw) {
-    total += w;
-    lo_depth = std::min(lo_depth, d);
-    hi_depth = std::max(hi_depth, d);
+  for (size_t c = 0; c < chunks; ++c) {
+    total += chunk_total[c];
+    lo_depth = std::min(lo_depth, chunk_lo[c]);
+    hi_depth = std::max(hi_depth, chunk_hi[c]);
   }
   const double target = share * total;
   constexpr int kBins = 4096;
   const double per_depth = hi_depth > lo_depth ? kBins / (hi_depth - lo_depth) : 0.0;
   auto bin_of = [&](double d) { return std::min(kBins - 1, int((d - lo_depth) * per_depth)); };
+  std::vector<std::vector<double>> chunk_hist(chunks);
+  parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
+    std::vector<double> h(kBins, 0.0);  // a local, moved in at the end
+    for (size_t k = begin; k < end; ++k) h[size_t(bin_of(dw[k].first))] += dw[k].second;
+    chunk_hist[begin / kListGrain] = std::move(h);
+  });
   std::vector<double> hist(kBins, 0.0);
-  for (const auto& [d, w] : dw) hist[size_t(bin_of(d))] += w;
+  for (const std::vector<double>& h : chunk_hist)
+    for (int b = 0; b < kBins; ++b) hist[size_t(b)] += h[size_t(b)];
   int bin = 0;
   double before = 0;  // the weight of the entries ordered before the bin's
   while (bin < kBins - 1 && before + hist[size_t(bin)] < target) before += hist[size_t(bin++)];
+  std::vector<std::vector<std::pair<double, double>>> chunk_in_bin(chunks);
+  parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
+    std::vector<std::pair<double, double>> found;  // a local, moved in at the end
+    for (size_t k = begin; k < end; ++k)
+      if (bin_of(dw[k].first) == bin) found.push_back(dw[k]);
+    chunk_in_bin[begin / kListGrain] = std::move(found);
+  });
   std::vector<std::pair<double, double>> in_bin;
-  for (const auto& e : dw)
-    if (bin_of(e.first) == bin) in_bin.push_back(e);
+  for (const auto& f : chunk_in_bin) in_bin.insert(in_bin.end(), f.begin(), f.end());
   size_t lo = 0, hi = in_bin.size();
   double found = hi_depth;
   while (lo < hi) {

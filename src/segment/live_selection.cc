@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/parallel.h"
+
 namespace isegman::segment {
 
 void LiveSelection::set(uint32_t i, bool s) {
@@ -38,22 +40,34 @@ void LiveSelection::add_support(const std::vector<uint32_t>& positive) {
 const std::vector<uint32_t>& LiveSelection::support() const {
   if (!support_listed_) {
     support_list_.clear();
-    for_each_supported([&](uint32_t i) { support_list_.push_back(i); });
+    for_each_supported(0, support_bits_.size(), [&](uint32_t i) { support_list_.push_back(i); });
     support_listed_ = true;
   }
   return support_list_;
 }
 
-void LiveSelection::decide(const VoteAccumulator& votes) {
+void LiveSelection::decide(const VoteAccumulator& votes, int threads) {
+  // Chunks of 2^18 Gaussians tested in parallel, each listing its members ascending, joined
+  // in order.
+  constexpr size_t kWordsPerChunk = size_t(1) << 12;  // 64 Gaussians a word
+  const size_t words = everyone_ ? (votes.size() + 63) / 64 : support_bits_.size();
+  const size_t chunks = (words + kWordsPerChunk - 1) / kWordsPerChunk;
+  std::vector<std::vector<uint32_t>> found(chunks);
+  parallel_for(chunks, threads, [&](int, size_t c) {
+    std::vector<uint32_t> out;  // a local, moved in at the end: the chunks' lists share cache lines
+    auto visit = [&](uint32_t i) {
+      if (votes.selects(i, rule_.tau, min_fixed_, rule_.centre, rule_.whole)) out.push_back(i);
+    };
+    const size_t w0 = c * kWordsPerChunk, w1 = std::min(words, w0 + kWordsPerChunk);
+    if (everyone_)
+      for (size_t i = w0 * 64, e = std::min(votes.size(), w1 * 64); i < e; ++i) visit(uint32_t(i));
+    else
+      for_each_supported(w0, w1, visit);
+    found[c] = std::move(out);
+  });
   std::vector<uint32_t>& now = next_members_;
   now.clear();
-  auto visit = [&](uint32_t i) {
-    if (votes.selects(i, rule_.tau, min_fixed_, rule_.centre, rule_.whole)) now.push_back(i);
-  };
-  if (everyone_)
-    for (uint32_t i = 0; i < uint32_t(votes.size()); ++i) visit(i);
-  else
-    for_each_supported(visit);
+  for (const std::vector<uint32_t>& f : found) now.insert(now.end(), f.begin(), f.end());
   // Both lists ascending: only the Gaussians that left or joined change their forms (a view
   // changes a few of the ~10^6 members of a large scene's selection).
   size_t a = 0, b = 0;

@@ -29,8 +29,9 @@ class LiveSelection {
   void reset(size_t n, const SelectionRule& rule, const std::vector<bool>* excluded);
   // After votes.add(positive, ...): the Gaussians `positive` votes for.
   void add_support(const std::vector<uint32_t>& positive);
-  // Decides the selection from `votes` (which add_support has followed since reset).
-  void decide(const VoteAccumulator& votes);
+  // Decides the selection from `votes` (which add_support has followed since reset), on
+  // `threads` workers (0 = all cores).
+  void decide(const VoteAccumulator& votes, int threads = 1);
 
   // votes.select(rule) as of the last decide: excluded Gaussians included (coherence counts them).
   const std::vector<bool>& strong() const { return strong_; }
@@ -46,10 +47,10 @@ class LiveSelection {
 
  private:
   void set(uint32_t i, bool s);
-  // f(i) for every Gaussian i of the support, ascending.
+  // f(i) for every Gaussian i of the support in words [w0, w1) of its bits, ascending.
   template <class F>
-  void for_each_supported(F&& f) const {
-    for (size_t w = 0; w < support_bits_.size(); ++w)
+  void for_each_supported(size_t w0, size_t w1, F&& f) const {
+    for (size_t w = w0; w < w1; ++w)
       for (uint64_t bits = support_bits_[w]; bits != 0; bits &= bits - 1)
         f(uint32_t(w * 64 + size_t(__builtin_ctzll(bits))));
   }

@@ -29,7 +29,7 @@ TEST(LiveSelection, DecidesAsTheWholeAccumulatorAndKeepsItsSupport) {
   // kept in strong() and left out of eligible()), and support() must be the sorted union of
   // the positive lists so far, across the 64-Gaussian words of its bit set.
   SplitMix64 rng(11);
-  for (size_t n : {size_t(1), size_t(63), size_t(64), size_t(65), size_t(5000)}) {
+  for (size_t n : {size_t(1), size_t(63), size_t(64), size_t(65), size_t(5000), size_t(600000)}) {
     std::vector<bool> excluded(n, false);
     for (size_t i = 0; i < n; ++i) excluded[i] = rng.next() % 7 == 0;
     SelectionRule rule;
@@ -62,7 +62,7 @@ TEST(LiveSelection, DecidesAsTheWholeAccumulatorAndKeepsItsSupport) {
       votes.add(positive, total, +1, nullptr, &centred, &whole);
       live.add_support(positive.index);
       support.insert(positive.index.begin(), positive.index.end());
-      live.decide(votes);
+      live.decide(votes, view % 2 ? 2 : 1);  // 600,000 Gaussians: three chunks decided in parallel
       const std::vector<bool> want = votes.select(rule.tau, rule.min_total, rule.centre, rule.whole);
       ASSERT_EQ(live.strong(), want) << "n " << n << " view " << view;
       size_t selected = 0;

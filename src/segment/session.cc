@@ -762,7 +762,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   VotingParts& part = rep.voting;
   auto decide = [&]() {
     TimeInto timed{part.decide};
-    if (undecided) live.decide(acc);
+    if (undecided) live.decide(acc, o.threads);
     undecided = false;
   };
   bool first = true;
