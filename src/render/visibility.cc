@@ -350,21 +350,30 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
 }
 
 std::vector<uint8_t> tiles_listing(const PreparedFrame& frame, const std::vector<uint8_t>& tiles,
-                                   const std::vector<bool>& wanted, int threads) {
+                                   const std::vector<bool>& wanted, int threads,
+                                   std::vector<uint64_t>* unwanted_listed) {
   const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
   const size_t n = size_t(frame.grid_x) * frame.grid_y;
   if (tiles.size() != n) throw Error("tiles_listing: tile flags do not match the frame");
   if (wanted.size() != frame.gaussians) throw Error("tiles_listing: Gaussian flags do not match the scene");
+  if (unwanted_listed && unwanted_listed->size() != (frame.gaussians + 63) / 64)
+    throw Error("tiles_listing: the listed Gaussians' bits do not match the scene");
   std::vector<uint8_t> out(n, 0);
   parallel_for(n, threads, [&](int, size_t t) {
     if (!tiles[t]) return;
-    const uint32_t end = d.tile_start[t + 1];
-    for (uint32_t e = d.tile_start[t]; e < end; ++e) {
+    const uint32_t begin = d.tile_start[t], end = d.tile_start[t + 1];
+    for (uint32_t e = begin; e < end; ++e) {
       if (e + 16 < end) __builtin_prefetch(&d.splats[d.tile_list[e + 16]]);  // read at random, as in the tile loop
       if (wanted[d.splats[d.tile_list[e]].index]) {
         out[t] = 1;
         return;
       }
+    }
+    if (!unwanted_listed) return;
+    uint64_t* bits = unwanted_listed->data();
+    for (uint32_t e = begin; e < end; ++e) {  // just read: in cache
+      const uint32_t g = d.splats[d.tile_list[e]].index;
+      __atomic_fetch_or(&bits[g >> 6], uint64_t(1) << (g & 63), __ATOMIC_RELAXED);  // tiles share Gaussians
     }
   });
   return out;

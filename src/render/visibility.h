@@ -57,9 +57,12 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
 
 // The Gaussians a frame's tiles list (flags over the frame's tiles, grid_x * grid_y): for
 // each flagged tile, whether its list names a Gaussian `wanted` holds (one flag per
-// Gaussian of the scene); unflagged tiles come out 0.
+// Gaussian of the scene); unflagged tiles come out 0. `unwanted_listed` (optional: one bit
+// per Gaussian of the scene, in 64-bit words): the Gaussians the flagged tiles that name
+// none wanted list are set in it (those tiles' lists are read whole anyway).
 std::vector<uint8_t> tiles_listing(const PreparedFrame& frame, const std::vector<uint8_t>& tiles,
-                                   const std::vector<bool>& wanted, int threads = 0);
+                                   const std::vector<bool>& wanted, int threads = 0,
+                                   std::vector<uint64_t>* unwanted_listed = nullptr);
 // The tiles a Gaussian's splat reaches in a compacted frame (the box outside which its
 // alpha stays below 1/255, clipped to the image), inclusive. False when the frame holds no
 // splat of it (outside the view, culled, or dropped by the compaction) or the frame is not

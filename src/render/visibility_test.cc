@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/error.h"
+#include "render/tile_kernel.h"
 
 namespace isegman {
 namespace {
@@ -195,6 +196,49 @@ TEST(Visibility, SumsMatchTheRoundedWeightsOfEveryPixel) {
   EXPECT_GT(outside, 0);
   Image wrong(cam.width + 1, cam.height, 1);
   EXPECT_THROW(weight_sums(compact, &wrong, {}), Error);
+}
+
+TEST(Visibility, TilesListingFindsTheWantedAndListsTheRestsGaussians) {
+  // Against the frame's own tile lists: a flagged tile comes out 1 when its list names a
+  // wanted Gaussian, and the Gaussians of the flagged tiles that name none are the bits set.
+  const GaussianScene g = dense_cloud(8000, 5);
+  const Camera cam = Camera::look_at({0.3, -3.0, 0.8}, {0, 0, 0}, {0, 0, 1}, 130, 90, 60);
+  PreparedFrame frame = prepare_frame(g, cam);
+  compact_frame(frame, {});
+  const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
+  const size_t tiles = size_t(frame.grid_x) * frame.grid_y;
+  uint64_t s = 77;
+  auto rnd = [&] { return (s = s * 6364136223846793005ull + 1442695040888963407ull) >> 33; };
+  for (int trial = 0; trial < 4; ++trial) {
+    std::vector<bool> wanted(g.size(), false);
+    for (size_t j = 0; j < g.size(); ++j) wanted[j] = rnd() % (trial == 0 ? 2000 : 200) == 0;
+    std::vector<uint8_t> flags(tiles, 0);
+    for (size_t t = 0; t < tiles; ++t) flags[t] = rnd() % 3 != 0;
+    std::vector<uint8_t> want_out(tiles, 0);
+    std::vector<uint64_t> want_bits((g.size() + 63) / 64, 0);
+    size_t rest = 0;
+    for (size_t t = 0; t < tiles; ++t) {
+      if (!flags[t]) continue;
+      for (uint32_t e = d.tile_start[t]; e < d.tile_start[t + 1]; ++e) want_out[t] |= wanted[d.splats[d.tile_list[e]].index];
+      if (want_out[t]) continue;
+      ++rest;
+      for (uint32_t e = d.tile_start[t]; e < d.tile_start[t + 1]; ++e) {
+        const uint32_t j = d.splats[d.tile_list[e]].index;
+        want_bits[j >> 6] |= uint64_t(1) << (j & 63);
+      }
+    }
+    ASSERT_GT(rest, 0u);
+    ASSERT_NE(want_bits, std::vector<uint64_t>(want_bits.size(), 0));  // the rest's tiles list Gaussians
+    for (int threads : {1, 3}) {
+      std::vector<uint64_t> bits((g.size() + 63) / 64, 0);
+      EXPECT_EQ(tiles_listing(frame, flags, wanted, threads, &bits), want_out) << "trial " << trial;
+      EXPECT_EQ(bits, want_bits) << "trial " << trial << ", " << threads << " threads";
+      EXPECT_EQ(tiles_listing(frame, flags, wanted, threads), want_out);
+    }
+  }
+  std::vector<uint64_t> short_bits(3, 0);
+  EXPECT_THROW(tiles_listing(frame, std::vector<uint8_t>(tiles, 1), std::vector<bool>(g.size(), false), 1, &short_bits),
+               Error);
 }
 
 }  // namespace

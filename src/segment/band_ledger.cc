@@ -74,7 +74,8 @@ ViewVotes BandLedger::add_view(size_t view, const PreparedFrame& frame, const Im
   if (is_compact(frame)) {
     std::vector<bool> wanted = supported_;
     for (uint32_t j : shown) wanted[j] = false;
-    now = tiles_listing(frame, w.tiles, wanted, threads);
+    w.listed.assign((supported_.size() + 63) / 64, 0);
+    now = tiles_listing(frame, w.tiles, wanted, threads, &w.listed);
   }
   ViewVotes votes;
   if (const size_t n = flagged(now)) {
@@ -107,7 +108,10 @@ std::vector<ViewVotes> BandLedger::add_positive(const std::vector<uint32_t>& pos
     TileBox box;
     size_t cursor = 0;  // `fresh` is ascending
     for (uint32_t j : fresh) {
-      if (w.shown[j] || !splat_tile_box(frame, j, box, cursor)) continue;
+      // Only a Gaussian a waiting tile lists can release one: the search for its splat is
+      // skipped for the others (most of a vote's Gaussians lie under its own mask).
+      const bool listed = w.listed.empty() || ((w.listed[j >> 6] >> (j & 63)) & 1);
+      if (w.shown[j] || !listed || !splat_tile_box(frame, j, box, cursor)) continue;
       for (int ty = box.y0; ty <= box.y1; ++ty)
         for (int tx = box.x0; tx <= box.x1; ++tx) {
           const size_t t = size_t(ty) * gx + size_t(tx);

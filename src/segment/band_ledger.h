@@ -47,6 +47,9 @@ class BandLedger {
     std::vector<uint8_t> band;   // per pixel, 1 in the band (only in waiting tiles)
     std::vector<uint8_t> tiles;  // per tile, 1 while it waits
     std::vector<bool> shown;     // the view's mask's Gaussians
+    // One bit per Gaussian: those its waiting tiles list (set when they started waiting). A
+    // Gaussian's splat box holds the tiles that list it, so no other Gaussian releases one.
+    std::vector<uint64_t> listed;
   };
   // The band's pixels in the flagged tiles, as an image for masked_votes.
   static Image band_in(const Waiting& w, const std::vector<uint8_t>& tiles, int grid_x);
