@@ -359,23 +359,38 @@ std::vector<uint8_t> tiles_listing(const PreparedFrame& frame, const std::vector
   if (unwanted_listed && unwanted_listed->size() != (frame.gaussians + 63) / 64)
     throw Error("tiles_listing: the listed Gaussians' bits do not match the scene");
   std::vector<uint8_t> out(n, 0);
-  parallel_for(n, threads, [&](int, size_t t) {
+  // The listed Gaussians' bits, one set per worker (no atomics), or-ed together at the end.
+  const int slots = resolve_threads(threads);
+  std::vector<std::vector<uint64_t>> worker_bits(unwanted_listed ? size_t(slots) : 0);
+  std::vector<std::vector<uint32_t>> worker_seen(static_cast<size_t>(slots));
+  parallel_for(n, slots, [&](int w, size_t t) {
     if (!tiles[t]) return;
     const uint32_t begin = d.tile_start[t], end = d.tile_start[t + 1];
+    // A local while in use (the workers' vectors share cache lines), kept for its capacity.
+    std::vector<uint32_t> seen = std::move(worker_seen[size_t(w)]);
+    seen.clear();
+    bool found = false;
     for (uint32_t e = begin; e < end; ++e) {
       if (e + 16 < end) __builtin_prefetch(&d.splats[d.tile_list[e + 16]]);  // read at random, as in the tile loop
-      if (wanted[d.splats[d.tile_list[e]].index]) {
-        out[t] = 1;
-        return;
-      }
-    }
-    if (!unwanted_listed) return;
-    uint64_t* bits = unwanted_listed->data();
-    for (uint32_t e = begin; e < end; ++e) {  // just read: in cache
       const uint32_t g = d.splats[d.tile_list[e]].index;
-      __atomic_fetch_or(&bits[g >> 6], uint64_t(1) << (g & 63), __ATOMIC_RELAXED);  // tiles share Gaussians
+      if (wanted[g]) {
+        found = true;
+        break;
+      }
+      if (unwanted_listed) seen.push_back(g);
     }
+    if (found) {
+      out[t] = 1;
+    } else if (unwanted_listed) {
+      std::vector<uint64_t>& bits = worker_bits[size_t(w)];
+      if (bits.empty()) bits.assign(unwanted_listed->size(), 0);
+      for (uint32_t g : seen) bits[g >> 6] |= uint64_t(1) << (g & 63);
+    }
+    worker_seen[size_t(w)] = std::move(seen);
   });
+  for (const std::vector<uint64_t>& bits : worker_bits)
+    if (!bits.empty())
+      for (size_t i = 0; i < bits.size(); ++i) (*unwanted_listed)[i] |= bits[i];
   return out;
 }
 
