@@ -431,9 +431,46 @@ std::vector<uint8_t> dilated(const Image& mask, int x0, int y0, int x1, int y1, 
 
 }  // namespace
 
+namespace {
+// Of a view's list of votes, surroundings_surface reads every stride-th: a large scene's view
+// shows ~10^6 Gaussians, and every stride-th of them is plenty for a median and a spread (a
+// view of up to 2^18 Gaussians is read whole).
+size_t surroundings_stride(size_t votes) { return std::max<size_t>(1, votes >> 18); }
+}  // namespace
+
+SurroundingsIndex surroundings_index(const GaussianScene& scene, const Camera& camera, const ViewVotes& total) {
+  SurroundingsIndex out;
+  out.votes = total.index.size();
+  out.width = camera.width;
+  out.height = camera.height;
+  out.grid_x = (camera.width + SurroundingsIndex::kCell - 1) / SurroundingsIndex::kCell;
+  out.grid_y = (camera.height + SurroundingsIndex::kCell - 1) / SurroundingsIndex::kCell;
+  const size_t cells = size_t(out.grid_x) * size_t(out.grid_y), stride = surroundings_stride(out.votes);
+  std::vector<int32_t> cell_of;  // per sample, -1 where its centre is outside the image
+  cell_of.reserve(out.votes / stride + 1);
+  out.start.assign(cells + 1, 0);
+  for (size_t k = 0; k < out.votes; k += stride) {
+    double u, v;
+    int32_t c = -1;
+    // The same test surroundings_surface applies first, with x0 = y0 = 0 at the widest.
+    if (camera.project(scene.position(total.index[k]), u, v) && u >= 0 && v >= 0 && u < camera.width &&
+        v < camera.height)
+      c = int32_t((int(v) / SurroundingsIndex::kCell) * out.grid_x + int(u) / SurroundingsIndex::kCell);
+    cell_of.push_back(c);
+    if (c >= 0) ++out.start[size_t(c) + 1];
+  }
+  for (size_t c = 0; c < cells; ++c) out.start[c + 1] += out.start[c];
+  out.entries.resize(out.start[cells]);
+  std::vector<uint32_t> fill(out.start.begin(), out.start.end() - 1);
+  for (size_t s = 0; s < cell_of.size(); ++s)
+    if (cell_of[s] >= 0) out.entries[fill[size_t(cell_of[s])]++] = uint32_t(s * stride);
+  return out;
+}
+
 SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camera& camera, const Image& mask,
                                          const Image& depth, const Image& alpha, const ViewVotes& total,
-                                         double near_limit, const BackgroundOptions& o, int threads) {
+                                         double near_limit, const BackgroundOptions& o, int threads,
+                                         const SurroundingsIndex* index) {
   const int w = mask.width, h = mask.height;
   const size_t npx = size_t(w) * size_t(h);
   if (o.spread_scale <= 0 || w == 0 || h == 0 || depth.data.size() != npx || alpha.data.size() != npx)
@@ -449,17 +486,28 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
   const int bw = x1 - x0 + 1;
   const std::vector<uint8_t> near_mask = dilated(mask, x0, y0, x1, y1, inner);
   const std::vector<uint8_t> ring_reach = dilated(mask, x0, y0, x1, y1, outer);
-  // (offset, weight) of the Gaussians centred on the ring, per chunk, merged in order.
-  // A large scene's view shows ~10^6 Gaussians: every stride-th of them is plenty for a
-  // median and a spread (a view of up to 2^18 Gaussians is read whole).
-  const size_t stride = std::max<size_t>(1, total.index.size() >> 18);
-  const size_t n = (total.index.size() + stride - 1) / stride;
+  // The positions in `total` read: every stride-th, or of those the ones the index files in
+  // the cells around the ring (a centre in [x0, x1 + 1) lies in a cell of [x0, x1] / kCell).
+  std::vector<uint32_t> filed;
+  const bool indexed = index && index->votes == total.index.size() && index->width == w && index->height == h;
+  if (indexed) {
+    constexpr int C = SurroundingsIndex::kCell;
+    for (int cy = y0 / C; cy <= y1 / C; ++cy)
+      for (int cx = x0 / C; cx <= x1 / C; ++cx) {
+        const size_t c = size_t(cy) * size_t(index->grid_x) + size_t(cx);
+        filed.insert(filed.end(), index->entries.begin() + index->start[c], index->entries.begin() + index->start[c + 1]);
+      }
+  }
+  const size_t stride = surroundings_stride(total.index.size());
+  const size_t n = indexed ? filed.size() : (total.index.size() + stride - 1) / stride;
+  // (offset, weight) of the Gaussians centred on the ring, per chunk, then sorted: the
+  // order they are found in does not matter.
   const size_t chunks = (n + kListGrain - 1) / kListGrain;
   std::vector<std::vector<std::pair<double, double>>> found(chunks);
   parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
     std::vector<std::pair<double, double>> out;  // moved in at the end: the chunks' vectors share cache lines
     for (size_t s = begin; s < end; ++s) {
-      const size_t k = s * stride;
+      const size_t k = indexed ? filed[s] : s * stride;
       double u, v, cz;
       if (!camera.project(scene.position(total.index[k]), u, v, &cz)) continue;
       if (!(u >= x0 && v >= y0 && u < x1 + 1 && v < y1 + 1)) continue;

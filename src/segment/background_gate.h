@@ -89,9 +89,27 @@ struct SurroundingsSurface {
 // are centred there or spread_scale is 0. `total`: the view's Gaussians with their weights
 // (all its votes); of a list longer than 2^18 every k-th is read, k = its length / 2^18
 // (rounded down). `threads` (0: every core) does not change the result.
+// `index` (optional, surroundings_index of the same view and list): only the Gaussians
+// centred in the cells around the mask are read; the result is the same.
+struct SurroundingsIndex;
 SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camera& camera, const Image& mask,
                                          const Image& depth, const Image& alpha, const ViewVotes& total,
-                                         double near_limit, const BackgroundOptions& options = {}, int threads = 1);
+                                         double near_limit, const BackgroundOptions& options = {}, int threads = 1,
+                                         const SurroundingsIndex* index = nullptr);
+
+// The Gaussians surroundings_surface reads of a view (every k-th of its votes, as there),
+// filed by the cell of kCell x kCell pixels their centre projects to, so that a mask reads
+// only the cells around it rather than a pass over the view's ~10^6 Gaussians. A view's
+// Gaussians and camera do not change: built once per view (segment/views.cc).
+struct SurroundingsIndex {
+  static constexpr int kCell = 32;
+  size_t votes = 0;  // the length of the list it was built from
+  int width = 0, height = 0, grid_x = 0, grid_y = 0;
+  std::vector<uint32_t> start;    // per cell (row-major) into `entries`, grid_x * grid_y + 1
+  std::vector<uint32_t> entries;  // positions in the list, ascending within a cell
+  size_t bytes() const { return (start.capacity() + entries.capacity()) * sizeof(uint32_t); }
+};
+SurroundingsIndex surroundings_index(const GaussianScene& scene, const Camera& camera, const ViewVotes& total);
 
 // What is known of the target in the view: the clicked pixels and the current selection
 // (null before the first vote).

@@ -443,5 +443,55 @@ TEST(BackgroundGate, NearDepthMatchesTheSortedWalk) {
   }
 }
 
+TEST(BackgroundGate, TheSurroundingsIndexReadsTheSameGaussiansAsAPassOverTheView) {
+  // 600,000 Gaussians (every 2nd of the view's list is read) scattered about a wall at depth
+  // 5 in a 300 x 200 view; small masks at random places. Read through the index (only the
+  // cells around each mask), the surroundings' surface is the same, to the bit.
+  SplitMix64 rng(5);
+  const Camera cam = Camera::look_at({0, 0, 0}, {0, 0, 1}, {0, -1, 0}, 300, 200, 60);
+  GaussianScene scene;
+  ViewVotes total;
+  for (uint32_t i = 0; i < 600000; ++i) {
+    const double u = rng.uniform() * 340 - 20, v = rng.uniform() * 240 - 20, z = 5 * (1 + 0.02 * (rng.uniform() - 0.5));
+    const Vec3 p = cam.camera_to_world({(u - cam.cx) * z / cam.fx, (v - cam.cy) * z / cam.fy, z});
+    scene.positions.insert(scene.positions.end(), {float(p.x), float(p.y), float(p.z)});
+    total.index.push_back(i);
+    total.weight.push_back(int64_t(1 + rng.next() % 1000));
+  }
+  const SurroundingsIndex index = surroundings_index(scene, cam, total);
+  ASSERT_EQ(index.votes, total.index.size());
+  EXPECT_GT(index.entries.size(), 200000u);  // of the 300,000 read, those in the image (~73 %)
+  Image depth(300, 200, 1, 5.f), alpha(300, 200, 1, 1.f);
+  BackgroundOptions o;
+  o.spread_scale = 1.0;
+  int compared = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    Image mask(300, 200, 1);
+    const int x0 = int(rng.uniform() * 280), y0 = int(rng.uniform() * 180), mw = 4 + int(rng.uniform() * 40),
+              mh = 4 + int(rng.uniform() * 30);
+    for (int y = y0; y < std::min(200, y0 + mh); ++y)
+      for (int x = x0; x < std::min(300, x0 + mw); ++x) mask.at(x, y) = 1.f;
+    for (int threads : {1, 2}) {
+      const SurroundingsSurface pass = surroundings_surface(scene, cam, mask, depth, alpha, total, 4.0, o, threads);
+      const SurroundingsSurface filed = surroundings_surface(scene, cam, mask, depth, alpha, total, 4.0, o, threads, &index);
+      EXPECT_EQ(filed.offset, pass.offset) << "trial " << trial;
+      EXPECT_EQ(filed.tolerance, pass.tolerance) << "trial " << trial;
+      compared += pass.tolerance >= 0;
+    }
+  }
+  EXPECT_GE(compared, 20);  // nearly every mask had surroundings to measure
+  // An index of another list is not used.
+  ViewVotes shorter = total;
+  shorter.index.pop_back();
+  shorter.weight.pop_back();
+  Image mask(300, 200, 1);
+  for (int y = 90; y < 110; ++y)
+    for (int x = 140; x < 160; ++x) mask.at(x, y) = 1.f;
+  const SurroundingsSurface a = surroundings_surface(scene, cam, mask, depth, alpha, shorter, 4.0, o, 1);
+  const SurroundingsSurface b = surroundings_surface(scene, cam, mask, depth, alpha, shorter, 4.0, o, 1, &index);
+  EXPECT_EQ(a.offset, b.offset);
+  EXPECT_EQ(a.tolerance, b.tolerance);
+}
+
 }  // namespace
 }  // namespace isegman::segment

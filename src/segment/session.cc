@@ -827,7 +827,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
       const double near_limit = near * (1 - o.background_options.occluder_margin);
       const Image bg = background_inverse_depth(mask, view.depth, view.alpha, near_limit, o.background_options, o.threads);
       const SurroundingsSurface surface = surroundings_surface(scene_, view.camera, mask, view.depth, view.alpha,
-                                                               all_votes_of_view(k), near_limit, o.background_options, o.threads);
+                                                               all_votes_of_view(k), near_limit, o.background_options, o.threads,
+                                                               &view.surroundings);
       vs.background_offset = surface.offset;
       vs.background_tolerance = surface.tolerance >= 0 ? surface.tolerance : o.background_options.tolerance;
       const bool votes_against = o.background_against && !target.seeds.empty();

@@ -85,17 +85,23 @@ SegmentView build_view(const GaussianScene& scene, const Camera& camera, int cam
   } else {
     rgb = std::move(r.color);
   }
-  v.all_votes = PackedVotes(total_votes(v.frame, opt.threads));
+  set_all_votes(v, scene, opt.threads);
   v.embedding = sam.encode_cached(rgb, opt.cache_dir, timings);
   // What SAM encoded, a quarter of the float image: at 1000x660, 6 MB less per view.
   v.rgb8 = models::quantise_rgb(rgb);
   return v;
 }
 
+void set_all_votes(SegmentView& v, const GaussianScene& scene, int threads) {
+  const ViewVotes total = total_votes(v.frame, threads);
+  v.surroundings = surroundings_index(scene, v.camera, total);
+  v.all_votes = PackedVotes(total);
+}
+
 size_t view_bytes(const SegmentView& v) {
   return sizeof(SegmentView) + frame_bytes(v.frame) + v.rgb8.capacity() +
          (v.depth.data.capacity() + v.alpha.data.capacity()) * sizeof(float) +
-         v.all_votes.bytes() +
+         v.all_votes.bytes() + v.surroundings.bytes() +
          (v.embedding.features.bytes ? v.embedding.features.bytes->capacity() : 0) +
          models::SamModel::decoder_values_bytes(v.embedding);
 }

@@ -14,6 +14,7 @@
 #include "core/scene.h"
 #include "models/sam.h"
 #include "render/rasterizer.h"
+#include "segment/background_gate.h"
 #include "segment/packed_votes.h"
 #include "segment/votes.h"
 
@@ -28,8 +29,13 @@ struct SegmentView {
   Image depth, alpha;     // rendered expected depth and accumulated alpha
   PreparedFrame frame;
   PackedVotes all_votes;  // A-votes of every pixel (mask independent), packed: kept all session
+  SurroundingsIndex surroundings;  // of all_votes, for the background gate (background_gate.h)
   models::SamEmbedding embedding;
 };
+
+// Sets the view's all-pixel votes (all_votes) from its frame, and the surroundings index
+// over them; `scene` is the frame's.
+void set_all_votes(SegmentView& view, const GaussianScene& scene, int threads);
 
 // Bytes a view holds (its frame, images, all-pixel votes and embedding): what a cache of
 // views is bounded by.

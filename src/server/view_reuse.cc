@@ -130,7 +130,7 @@ segment::SegmentView reuse_view(const segment::SegmentView& donor, const Gaussia
   v.alpha = donor.alpha;
   v.embedding = donor.embedding;
   v.frame = prepare_frame(after, v.camera, view_render_settings(opt));
-  v.all_votes = segment::PackedVotes(segment::total_votes(v.frame, opt.threads));
+  segment::set_all_votes(v, after, opt.threads);
   return v;
 }
 
