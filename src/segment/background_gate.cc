@@ -598,27 +598,52 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
         behind_surface[k] = !crosses_surface(scene, camera, background, positive.index[k], pixel[2 * k],
                                              pixel[2 * k + 1], o.min_alignment);
   });
-  ViewVotes kept, moved;
+  // Split in parallel chunks, joined in order; the weights are whole numbers, so the sums
+  // are the same in any order.
+  struct Sums {
+    double selected = 0, selected_moved = 0, at_seeds = 0, at_seeds_moved = 0, moved_weight = 0, far_weight = 0;
+  };
+  const size_t chunks = (n + kListGrain - 1) / kListGrain;
+  std::vector<ViewVotes> kept_parts(chunks), moved_parts(chunks);
+  std::vector<Sums> chunk_sums(chunks);
+  parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
+    ViewVotes kept_here, moved_here;  // locals, moved in at the end: the chunks' lists share cache lines
+    Sums sums;
+    for (size_t k = begin; k < end; ++k) {
+      const uint32_t g = positive.index[k];
+      const bool behind = behind_surface[k];
+      const double wk = double(positive.weight[k]);
+      if (behind) {
+        sums.moved_weight += wk;
+        if (offset[k] < -far) sums.far_weight += wk;
+      }
+      if (at_seed[k]) {
+        sums.at_seeds += wk;
+        if (behind) sums.at_seeds_moved += wk;
+      }
+      if (target.selection && (*target.selection)[g]) {
+        sums.selected += wk;
+        if (behind) sums.selected_moved += wk;
+      }
+      ViewVotes& to = behind ? moved_here : kept_here;
+      to.index.push_back(g);
+      to.weight.push_back(positive.weight[k]);
+    }
+    const size_t c = begin / kListGrain;
+    kept_parts[c] = std::move(kept_here);
+    moved_parts[c] = std::move(moved_here);
+    chunk_sums[c] = sums;
+  });
   double selected = 0, selected_moved = 0, at_seeds = 0, at_seeds_moved = 0, moved_weight = 0, far_weight = 0;
-  for (size_t k = 0; k < n; ++k) {
-    const uint32_t g = positive.index[k];
-    const bool behind = behind_surface[k];
-    if (behind) {
-      moved_weight += double(positive.weight[k]);
-      if (offset[k] < -far) far_weight += double(positive.weight[k]);
-    }
-    if (at_seed[k]) {
-      at_seeds += double(positive.weight[k]);
-      if (behind) at_seeds_moved += double(positive.weight[k]);
-    }
-    if (target.selection && (*target.selection)[g]) {
-      selected += double(positive.weight[k]);
-      if (behind) selected_moved += double(positive.weight[k]);
-    }
-    ViewVotes& to = behind ? moved : kept;
-    to.index.push_back(g);
-    to.weight.push_back(positive.weight[k]);
+  for (const Sums& c : chunk_sums) {
+    selected += c.selected;
+    selected_moved += c.selected_moved;
+    at_seeds += c.at_seeds;
+    at_seeds_moved += c.at_seeds_moved;
+    moved_weight += c.moved_weight;
+    far_weight += c.far_weight;
   }
+  ViewVotes kept = join_in_order(std::move(kept_parts)), moved = join_in_order(std::move(moved_parts));
   // What the target is: the Gaussians at this view's clicks when it has any (a selection
   // may already hold what an earlier view's gaps showed: the wall inside a bicycle's
   // wheels), else the selection.

@@ -258,12 +258,25 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
   // depth_layers' own; elsewhere the extent stays 0, unread.
   if (o.extent_sigmas > 0) {
     const bool local = selection && o.region > 0;
-    double total = 0;
-    std::vector<double> region_total(local ? size_t(gx) * gy : 0, 0.0);
-    for (size_t k = 0; k < n; ++k) {
-      if (!counts(depth[k], weight[k])) continue;
-      total += weight[k];
-      if (local && region[k] >= 0) region_total[size_t(region[k])] += weight[k];
+    const size_t regions = local ? size_t(gx) * gy : 0, chunks = (n + kListGrain - 1) / kListGrain;
+    std::vector<double> chunk_total(chunks, 0.0);
+    std::vector<std::vector<double>> chunk_regions(chunks);
+    parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
+      double t = 0;
+      std::vector<double> r(regions, 0.0);  // a local, moved in at the end
+      for (size_t k = begin; k < end; ++k) {
+        if (!counts(depth[k], weight[k])) continue;
+        t += weight[k];
+        if (local && region[k] >= 0) r[size_t(region[k])] += weight[k];
+      }
+      chunk_total[begin / kListGrain] = t;
+      chunk_regions[begin / kListGrain] = std::move(r);
+    });
+    double total = 0;  // sums of whole numbers: the same in any order
+    std::vector<double> region_total(regions, 0.0);
+    for (size_t c = 0; c < chunks; ++c) {
+      total += chunk_total[c];
+      for (size_t r = 0; r < regions; ++r) region_total[r] += chunk_regions[c][r];
     }
     parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
       for (size_t k = begin; k < end; ++k) {
