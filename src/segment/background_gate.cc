@@ -603,6 +603,11 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   struct Sums {
     double selected = 0, selected_moved = 0, at_seeds = 0, at_seeds_moved = 0, moved_weight = 0, far_weight = 0;
   };
+  auto add_into = [](Sums& to, const Sums& from) {
+    for (auto field : {&Sums::selected, &Sums::selected_moved, &Sums::at_seeds, &Sums::at_seeds_moved,
+                       &Sums::moved_weight, &Sums::far_weight})
+      to.*field += from.*field;
+  };
   const size_t chunks = (n + kListGrain - 1) / kListGrain;
   std::vector<ViewVotes> kept_parts(chunks), moved_parts(chunks);
   std::vector<Sums> chunk_sums(chunks);
@@ -634,15 +639,10 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
     moved_parts[c] = std::move(moved_here);
     chunk_sums[c] = sums;
   });
-  double selected = 0, selected_moved = 0, at_seeds = 0, at_seeds_moved = 0, moved_weight = 0, far_weight = 0;
-  for (const Sums& c : chunk_sums) {
-    selected += c.selected;
-    selected_moved += c.selected_moved;
-    at_seeds += c.at_seeds;
-    at_seeds_moved += c.at_seeds_moved;
-    moved_weight += c.moved_weight;
-    far_weight += c.far_weight;
-  }
+  Sums all;
+  for (const Sums& c : chunk_sums) add_into(all, c);
+  const double selected = all.selected, selected_moved = all.selected_moved, at_seeds = all.at_seeds,
+               at_seeds_moved = all.at_seeds_moved, moved_weight = all.moved_weight, far_weight = all.far_weight;
   ViewVotes kept = join_in_order(std::move(kept_parts)), moved = join_in_order(std::move(moved_parts));
   // What the target is: the Gaussians at this view's clicks when it has any (a selection
   // may already hold what an earlier view's gaps showed: the wall inside a bicycle's
