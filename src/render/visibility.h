@@ -34,6 +34,13 @@ struct GaussianWeights {
 // in order) joined into one.
 GaussianWeights join_in_order(std::vector<GaussianWeights> parts);
 
+// `list` split by a flag per entry (flagged.size() == list.index.size()): the entries
+// flagged and those not, each in its order. In parallel chunks over long lists.
+struct SplitWeights {
+  GaussianWeights flagged, rest;
+};
+SplitWeights split_in_order(const GaussianWeights& list, const std::vector<uint8_t>& flagged, int threads);
+
 // Compacts `frame` (see above) with one full pass, which also renders it: returns what
 // rasterize(frame, settings) would. The frame then renders only with settings.alpha_max,
 // and colour or depth only when `keep_shading` (frames kept for voting need neither:

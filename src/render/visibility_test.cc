@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "render/tile_kernel.h"
 
 namespace isegman {
@@ -239,6 +240,35 @@ TEST(Visibility, TilesListingFindsTheWantedAndListsTheRestsGaussians) {
   std::vector<uint64_t> short_bits(3, 0);
   EXPECT_THROW(tiles_listing(frame, std::vector<uint8_t>(tiles, 1), std::vector<bool>(g.size(), false), 1, &short_bits),
                Error);
+}
+
+TEST(Visibility, SplitInOrderKeepsEachSidesOrderOnAnyNumberOfThreads) {
+  // Three chunks and a bit (kListGrain entries each), flags in an irregular pattern.
+  const size_t n = 3 * kListGrain + 1234;
+  GaussianWeights list;
+  std::vector<uint8_t> flags(n);
+  for (size_t k = 0; k < n; ++k) {
+    list.index.push_back(uint32_t(3 * k + 1));
+    list.weight.push_back(int64_t(k % 97 + 1));
+    flags[k] = (k * 2654435761u >> 7) % 3 == 0;
+  }
+  GaussianWeights flagged, rest;
+  for (size_t k = 0; k < n; ++k) {
+    GaussianWeights& to = flags[k] ? flagged : rest;
+    to.index.push_back(list.index[k]);
+    to.weight.push_back(list.weight[k]);
+  }
+  ASSERT_GT(flagged.index.size(), n / 4);
+  ASSERT_GT(rest.index.size(), n / 2);
+  for (int threads : {1, 2, 4}) {
+    const SplitWeights split = split_in_order(list, flags, threads);
+    EXPECT_EQ(split.flagged.index, flagged.index) << threads << " threads";
+    EXPECT_EQ(split.flagged.weight, flagged.weight) << threads << " threads";
+    EXPECT_EQ(split.rest.index, rest.index) << threads << " threads";
+    EXPECT_EQ(split.rest.weight, rest.weight) << threads << " threads";
+  }
+  const SplitWeights empty = split_in_order(GaussianWeights{}, {}, 2);
+  EXPECT_TRUE(empty.flagged.index.empty() && empty.rest.index.empty());
 }
 
 }  // namespace

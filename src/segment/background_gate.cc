@@ -598,27 +598,20 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
         behind_surface[k] = !crosses_surface(scene, camera, background, positive.index[k], pixel[2 * k],
                                              pixel[2 * k + 1], o.min_alignment);
   });
-  // Split in parallel chunks, joined in order; the weights are whole numbers, so the sums
-  // are the same in any order.
+  // The sums per chunk, in parallel; the weights are whole numbers, so they do not depend
+  // on the order.
   struct Sums {
     double selected = 0, selected_moved = 0, at_seeds = 0, at_seeds_moved = 0, moved_weight = 0, far_weight = 0;
+    size_t moved = 0;
   };
-  auto add_into = [](Sums& to, const Sums& from) {
-    for (auto field : {&Sums::selected, &Sums::selected_moved, &Sums::at_seeds, &Sums::at_seeds_moved,
-                       &Sums::moved_weight, &Sums::far_weight})
-      to.*field += from.*field;
-  };
-  const size_t chunks = (n + kListGrain - 1) / kListGrain;
-  std::vector<ViewVotes> kept_parts(chunks), moved_parts(chunks);
-  std::vector<Sums> chunk_sums(chunks);
+  std::vector<Sums> chunk_sums((n + kListGrain - 1) / kListGrain);
   parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
-    ViewVotes kept_here, moved_here;  // locals, moved in at the end: the chunks' lists share cache lines
-    Sums sums;
+    Sums& sums = chunk_sums[begin / kListGrain];
     for (size_t k = begin; k < end; ++k) {
-      const uint32_t g = positive.index[k];
       const bool behind = behind_surface[k];
       const double wk = double(positive.weight[k]);
       if (behind) {
+        ++sums.moved;
         sums.moved_weight += wk;
         if (offset[k] < -far) sums.far_weight += wk;
       }
@@ -626,24 +619,23 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
         sums.at_seeds += wk;
         if (behind) sums.at_seeds_moved += wk;
       }
-      if (target.selection && (*target.selection)[g]) {
+      if (target.selection && (*target.selection)[positive.index[k]]) {
         sums.selected += wk;
         if (behind) sums.selected_moved += wk;
       }
-      ViewVotes& to = behind ? moved_here : kept_here;
-      to.index.push_back(g);
-      to.weight.push_back(positive.weight[k]);
     }
-    const size_t c = begin / kListGrain;
-    kept_parts[c] = std::move(kept_here);
-    moved_parts[c] = std::move(moved_here);
-    chunk_sums[c] = sums;
   });
-  Sums all;
-  for (const Sums& c : chunk_sums) add_into(all, c);
-  const double selected = all.selected, selected_moved = all.selected_moved, at_seeds = all.at_seeds,
-               at_seeds_moved = all.at_seeds_moved, moved_weight = all.moved_weight, far_weight = all.far_weight;
-  ViewVotes kept = join_in_order(std::move(kept_parts)), moved = join_in_order(std::move(moved_parts));
+  double selected = 0, selected_moved = 0, at_seeds = 0, at_seeds_moved = 0, moved_weight = 0, far_weight = 0;
+  size_t moved_entries = 0;
+  for (const Sums& c : chunk_sums) {
+    moved_entries += c.moved;
+    selected += c.selected;
+    selected_moved += c.selected_moved;
+    at_seeds += c.at_seeds;
+    at_seeds_moved += c.at_seeds_moved;
+    moved_weight += c.moved_weight;
+    far_weight += c.far_weight;
+  }
   // What the target is: the Gaussians at this view's clicks when it has any (a selection
   // may already hold what an earlier view's gaps showed: the wall inside a bicycle's
   // wheels), else the selection.
@@ -652,25 +644,27 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   // pickets 14 % in front of it) or, where the clicked Gaussians lie near it or no Gaussian
   // is centred at the clicks, the target itself.
   const bool target_clearly_in_front = seed_median >= far;  // false for NaN
-  if (moved.index.empty() || (!target_clearly_in_front && far_weight > o.max_far_behind * moved_weight) ||
+  if (moved_entries == 0 || (!target_clearly_in_front && far_weight > o.max_far_behind * moved_weight) ||
       (by_seeds && at_seeds_moved > 0.5 * at_seeds) ||
       (!by_seeds && clicked_pixel_in_or_behind(target, background, tolerance)) ||
       (!by_seeds && selected > 0 && selected_moved > 0.5 * selected))
     return 0;
+  SplitWeights split = split_in_order(positive, behind_surface, threads);
+  const ViewVotes& moved = split.flagged;
   // Merge into `neutral`, keeping it ascending.
   ViewVotes merged;
   size_t a = 0, b = 0;
   while (a < neutral.index.size() || b < moved.index.size()) {
     const bool take_a = b >= moved.index.size() || (a < neutral.index.size() && neutral.index[a] < moved.index[b]);
-    ViewVotes& src = take_a ? neutral : moved;
+    const ViewVotes& src = take_a ? neutral : moved;
     size_t& i = take_a ? a : b;
     merged.index.push_back(src.index[i]);
     merged.weight.push_back(src.weight[i]);
     ++i;
   }
   neutral = std::move(merged);
-  positive = std::move(kept);
-  return moved.index.size();
+  positive = std::move(split.rest);
+  return moved_entries;
 }
 
 }  // namespace isegman::segment

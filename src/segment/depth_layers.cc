@@ -125,7 +125,7 @@ int layer_of(const std::vector<DepthLayer>& layers, double z) {
 bool keep_local_layers(int gx, int gy, const std::vector<int32_t>& region, const std::vector<float>& depth,
                        const std::vector<float>& extent, const std::vector<double>& weight,
                        const std::vector<char>& selected,
-                       const DepthLayerOptions& o, std::vector<char>& keep, int threads) {
+                       const DepthLayerOptions& o, std::vector<uint8_t>& keep, int threads) {
   // Each region's entries, ascending, and their samples gathered beside them: one array per
   // figure, a range per region. A region's members lie scattered over the view's entries
   // (megabytes at millions of Gaussians), and reading them in place missed the cache at
@@ -288,7 +288,7 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
   }
   const std::vector<DepthLayer> layers = depth_layers(depth, weight, o, &extent, threads);
   rep.layers = int(layers.size());
-  std::vector<char> keep;
+  std::vector<uint8_t> keep;
   if (selection && o.region > 0 && keep_local_layers(gx, gy, region, depth, extent, weight, selected, o, keep, threads)) {
     rep.local = true;
   } else {
@@ -322,34 +322,13 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
     keep.assign(n, 0);
     for (size_t k = 0; k < n; ++k) keep[k] = layer_of(layers, depth[k]) == best_layer;
   }
-  // Split in parallel chunks, joined in order (the weights are whole numbers: the sums do
-  // not depend on the order either).
-  const size_t chunks = (n + kListGrain - 1) / kListGrain;
-  std::vector<ViewVotes> kept_parts(chunks), neutral_parts(chunks);
-  std::vector<double> gated_parts(chunks, 0.0), total_parts(chunks, 0.0);
-  parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
-    ViewVotes in, out;  // locals, moved in at the end: the chunks' lists share cache lines
-    double gated = 0, total = 0;
-    for (size_t k = begin; k < end; ++k) {
-      total += weight[k];
-      ViewVotes& to = keep[k] ? in : out;
-      to.index.push_back(positive.index[k]);
-      to.weight.push_back(positive.weight[k]);
-      if (!keep[k]) gated += weight[k];
-    }
-    const size_t c = begin / kListGrain;
-    kept_parts[c] = std::move(in);
-    neutral_parts[c] = std::move(out);
-    gated_parts[c] = gated;
-    total_parts[c] = total;
-  });
+  SplitWeights split = split_in_order(positive, keep, threads);
+  // The weights are whole numbers: the sums do not depend on the order.
   double gated = 0, total = 0;
-  for (size_t c = 0; c < chunks; ++c) {
-    gated += gated_parts[c];
-    total += total_parts[c];
-  }
-  positive = join_in_order(std::move(kept_parts));
-  neutral = join_in_order(std::move(neutral_parts));
+  for (int64_t w : split.rest.weight) gated += double(w);
+  for (int64_t w : positive.weight) total += double(w);
+  positive = std::move(split.flagged);
+  neutral = std::move(split.rest);
   rep.gated_share = total > 0 ? gated / total : 0;
   return rep;
 }
