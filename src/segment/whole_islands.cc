@@ -44,27 +44,57 @@ size_t drop_whole_islands(std::vector<bool>& selection, const VoteAccumulator& v
   // from): nothing is dropped.
   if (dependent.empty() || dependent.size() == selected) return 0;
   const TouchingGaussians touching(scene, index, selection, o.link_sigmas);
-  // Union-find over the dependent Gaussians (positions in `dependent`); a set is anchored
-  // when one of its members touches a Gaussian selected on its own votes.
+  // Union-find over the dependent Gaussians (positions in `dependent`), and the Gaussians
+  // selected on their own votes that each touches (its set's anchors).
   std::vector<uint32_t> parent(dependent.size());
   std::iota(parent.begin(), parent.end(), 0u);
-  std::vector<uint8_t> anchored(dependent.size(), 0);
   auto slot = [&](uint32_t j) -> long {
     const auto it = std::lower_bound(dependent.begin(), dependent.end(), j);
     return it != dependent.end() && *it == j ? long(it - dependent.begin()) : -1;
   };
+  std::vector<std::pair<uint32_t, uint32_t>> anchors;  // (dependent position, anchor)
   for (size_t a = 0; a < dependent.size(); ++a)
     touching.for_each(dependent[a], [&](uint32_t j) {
       const long b = slot(j);
       if (b < 0) {
-        anchored[a] = 1;
+        anchors.push_back({uint32_t(a), j});
       } else {
         const uint32_t ra = root(parent, uint32_t(a)), rb = root(parent, uint32_t(b));
-        if (ra != rb) parent[ra] = rb;  // anchors reach their set's root after the loop
+        if (ra != rb) parent[ra] = rb;
       }
     });
+  std::vector<uint32_t> set_size(dependent.size(), 0);
+  for (size_t a = 0; a < dependent.size(); ++a) ++set_size[root(parent, uint32_t(a))];
+  for (auto& [a, j] : anchors) a = root(parent, a);
+  std::sort(anchors.begin(), anchors.end());
+  // A set is anchored when the part it touches (the Gaussians selected on their own votes
+  // joined to its anchors by chains of such Gaussians) holds at least min_own_share of its
+  // size, and at least one Gaussian. A search from the anchors stops as soon as it has
+  // found that many.
+  std::vector<uint8_t> anchored(dependent.size(), 0);
+  std::vector<uint32_t> found, frontier;
+  for (size_t i = 0; i < anchors.size();) {
+    const uint32_t set = anchors[i].first;
+    found.clear();
+    for (; i < anchors.size() && anchors[i].first == set; ++i)
+      if (found.empty() || found.back() != anchors[i].second) found.push_back(anchors[i].second);
+    const size_t need = std::max<size_t>(1, size_t(std::ceil(o.min_own_share * double(set_size[set]))));
+    frontier = found;
+    std::sort(found.begin(), found.end());
+    while (found.size() < need && !frontier.empty()) {
+      const uint32_t g = frontier.back();
+      frontier.pop_back();
+      touching.for_each(g, [&](uint32_t j) {
+        if (found.size() >= need || slot(j) >= 0) return;
+        const auto at = std::lower_bound(found.begin(), found.end(), j);
+        if (at != found.end() && *at == j) return;
+        found.insert(at, j);
+        frontier.push_back(j);
+      });
+    }
+    anchored[set] = found.size() >= need;
+  }
   size_t dropped = 0;
-  for (size_t a = 0; a < dependent.size(); ++a) anchored[root(parent, uint32_t(a))] |= anchored[a];
   for (size_t a = 0; a < dependent.size(); ++a)
     if (!anchored[root(parent, uint32_t(a))]) {
       selection[dependent[a]] = false;

@@ -66,5 +66,56 @@ TEST(WholeIslands, ALinkFarEnoughJoinsTheNeighbourAndOffDropsNothing) {
   EXPECT_EQ(drop_whole_islands(none.selection, none.votes, none.scene, index, 0.8, 0.0, {}, on), 0u);
 }
 
+// The part the votes select (0..9) with the rest of its whole touching it (10..19), and a
+// neighbour of 100 Gaussians 10 cm apart (20..119) that the whole rule selects, `own` of
+// them (from the far end) also on their own votes: a few of a neighbour's Gaussians seen
+// mostly by the views whose masks took it in.
+struct PartlyAnchored {
+  GaussianScene scene;
+  VoteAccumulator votes{120};
+  std::vector<bool> selection = std::vector<bool>(120, true);
+  explicit PartlyAnchored(uint32_t own) {
+    ViewVotes positive, total;
+    for (uint32_t i = 0; i < 120; ++i) {
+      const float x = 0.01f * float(i < 20 ? i : i + 10);
+      scene.positions.insert(scene.positions.end(), {x, 0.f, 0.f});
+      scene.scales.insert(scene.scales.end(), {std::log(0.01f), std::log(0.01f), std::log(0.002f)});
+      scene.rotations.insert(scene.rotations.end(), {1, 0, 0, 0});
+      scene.opacity.push_back(0);
+      const int64_t a = int64_t(1) << 24;
+      total.index.push_back(i);
+      total.weight.push_back(a);
+      const bool selects = i < 10 || i >= 120 - own;
+      positive.index.push_back(i);
+      positive.weight.push_back(selects ? a : a * 4 / 10);
+    }
+    votes.add(positive, total);
+  }
+};
+
+TEST(WholeIslands, AnIslandIsKeptOnlyWhenWhatItsOwnVotesSelectIsARealShareOfIt) {
+  IslandOptions o;
+  o.enabled = true;
+  o.link_sigmas = 1;
+  o.min_own_share = 0.02;
+  for (uint32_t own : {0u, 1u, 2u, 10u}) {
+    PartlyAnchored p(own);
+    const CentreIndex index(p.scene);
+    const size_t dropped = drop_whole_islands(p.selection, p.votes, p.scene, index, 0.8, 0.0, {}, o);
+    // Under 2 of its 100 Gaussians: the neighbour's dependent ones go; the part and the
+    // rest of its whole (20 Gaussians, 10 on their own votes) always stay.
+    const bool kept = own >= 2;
+    std::printf("[ islands ] neighbour with %u of 100 on its own votes: %zu dropped\n", own, dropped);
+    EXPECT_EQ(dropped, kept ? 0u : 100u - own) << own;
+    for (uint32_t i = 0; i < 20; ++i) EXPECT_TRUE(p.selection[i]) << own << " " << i;
+    for (uint32_t i = 20; i < 120; ++i) EXPECT_EQ(p.selection[i], kept || i >= 120 - own) << own << " " << i;
+  }
+  // Without the share, one Gaussian on its own votes anchors the whole neighbour.
+  PartlyAnchored one(1);
+  const CentreIndex index(one.scene);
+  o.min_own_share = 0;
+  EXPECT_EQ(drop_whole_islands(one.selection, one.votes, one.scene, index, 0.8, 0.0, {}, o), 0u);
+}
+
 }  // namespace
 }  // namespace isegman::segment
