@@ -22,11 +22,11 @@ struct IslandOptions {
   // shrub 83.8 -> 94.1 with 1, 83.9 with 1.5, unchanged with 3: the geranium beside it
   // stays joined).
   double link_sigmas = 1.0;
-  // A whole grows from a part that is a real share of it: an island of the selection keeps
-  // what the whole rule alone selects only when at least this fraction of its Gaussians is
-  // selected on their own votes. With 10 of 20 views taking in the geranium beside a
-  // clicked shrub, 3 of its 1,183 Gaussians pass on their own (the porch at 960x720); the
-  // rest of a compound object holds far more (the courtyard lamp's base 218 of 460).
+  // A whole grows from a part that is a real share of it: what the whole rule alone
+  // selects stays only when the part it touches (selected on its own votes) is at least
+  // this fraction of its size. With 10 of 20 views taking in the geranium beside a clicked
+  // shrub, 3 of its 1,183 Gaussians pass on their own (the porch at 960x720); a compound
+  // object's other part holds far more (the courtyard lamp's base: 218 of 460).
   double min_own_share = 0.02;
 };
 
@@ -60,10 +60,11 @@ class TouchingGaussians {
 };
 
 // Drops from `selection` the Gaussians that neither their own share (P/A > tau, with
-// enough weight) nor the centre rule selects, unless they lie on an island of the
-// selection (selected Gaussians joined by chains, each touching the next) of which at
-// least min_own_share (and at least one Gaussian) those select. `index` is built over
-// `scene`. Returns the number dropped.
+// enough weight) nor the centre rule selects (the dependent ones), set by set (dependent
+// Gaussians joined by chains, each touching the next), unless the set touches a part
+// those do select (such Gaussians joined by chains) of at least min_own_share of the
+// set's size, and at least one Gaussian. `index` is built over `scene`. Returns the
+// number dropped.
 size_t drop_whole_islands(std::vector<bool>& selection, const VoteAccumulator& votes, const GaussianScene& scene,
                           const CentreIndex& index, double tau, double min_total, const CentreRule& centre,
                           const IslandOptions& options);
