@@ -603,6 +603,12 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   struct Sums {
     double selected = 0, selected_moved = 0, at_seeds = 0, at_seeds_moved = 0, moved_weight = 0, far_weight = 0;
     size_t moved = 0;
+    Sums& operator+=(const Sums& o) {
+      selected += o.selected, selected_moved += o.selected_moved, at_seeds += o.at_seeds;
+      at_seeds_moved += o.at_seeds_moved, moved_weight += o.moved_weight, far_weight += o.far_weight;
+      moved += o.moved;
+      return *this;
+    }
   };
   std::vector<Sums> chunk_sums((n + kListGrain - 1) / kListGrain);
   parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
@@ -625,17 +631,11 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
       }
     }
   });
-  double selected = 0, selected_moved = 0, at_seeds = 0, at_seeds_moved = 0, moved_weight = 0, far_weight = 0;
-  size_t moved_entries = 0;
-  for (const Sums& c : chunk_sums) {
-    moved_entries += c.moved;
-    selected += c.selected;
-    selected_moved += c.selected_moved;
-    at_seeds += c.at_seeds;
-    at_seeds_moved += c.at_seeds_moved;
-    moved_weight += c.moved_weight;
-    far_weight += c.far_weight;
-  }
+  Sums all;
+  for (const Sums& c : chunk_sums) all += c;
+  const double selected = all.selected, selected_moved = all.selected_moved, at_seeds = all.at_seeds,
+               at_seeds_moved = all.at_seeds_moved, moved_weight = all.moved_weight, far_weight = all.far_weight;
+  const size_t moved_entries = all.moved;
   // What the target is: the Gaussians at this view's clicks when it has any (a selection
   // may already hold what an earlier view's gaps showed: the wall inside a bicycle's
   // wheels), else the selection.

@@ -9,6 +9,14 @@
 namespace isegman::segment {
 namespace {
 
+// A Gaussian of scale 1 cm (flat along z) centred at (x, 0, 0).
+void add_flat_gaussian(GaussianScene& scene, float x) {
+  scene.positions.insert(scene.positions.end(), {x, 0.f, 0.f});
+  scene.scales.insert(scene.scales.end(), {std::log(0.01f), std::log(0.01f), std::log(0.002f)});
+  scene.rotations.insert(scene.rotations.end(), {1, 0, 0, 0});
+  scene.opacity.push_back(0);
+}
+
 // Gaussians of scale 1 cm in rows along x: the part the votes select (0..9, x = 0..9 cm),
 // the rest of the whole touching it (10..19, x = 10..19 cm), and a neighbour standing
 // 10 cm apart (20..29, x = 30..39 cm).
@@ -19,11 +27,7 @@ struct Row {
   Row() {
     ViewVotes positive, total;
     for (uint32_t i = 0; i < 30; ++i) {
-      const float x = 0.01f * float(i < 20 ? i : i + 10);
-      scene.positions.insert(scene.positions.end(), {x, 0.f, 0.f});
-      scene.scales.insert(scene.scales.end(), {std::log(0.01f), std::log(0.01f), std::log(0.002f)});
-      scene.rotations.insert(scene.rotations.end(), {1, 0, 0, 0});
-      scene.opacity.push_back(0);
+      add_flat_gaussian(scene, 0.01f * float(i < 20 ? i : i + 10));
       const int64_t a = int64_t(1) << 24;
       total.index.push_back(i);
       total.weight.push_back(a);
@@ -77,11 +81,7 @@ struct PartlyAnchored {
   explicit PartlyAnchored(uint32_t own) {
     ViewVotes positive, total;
     for (uint32_t i = 0; i < 120; ++i) {
-      const float x = 0.01f * float(i < 20 ? i : i + 10);
-      scene.positions.insert(scene.positions.end(), {x, 0.f, 0.f});
-      scene.scales.insert(scene.scales.end(), {std::log(0.01f), std::log(0.01f), std::log(0.002f)});
-      scene.rotations.insert(scene.rotations.end(), {1, 0, 0, 0});
-      scene.opacity.push_back(0);
+      add_flat_gaussian(scene, 0.01f * float(i < 20 ? i : i + 10));
       const int64_t a = int64_t(1) << 24;
       total.index.push_back(i);
       total.weight.push_back(a);
