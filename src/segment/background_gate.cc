@@ -612,7 +612,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   };
   std::vector<Sums> chunk_sums((n + kListGrain - 1) / kListGrain);
   parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
-    Sums& sums = chunk_sums[begin / kListGrain];
+    Sums sums;  // in registers, stored at the end: the chunks' sums share cache lines
     for (size_t k = begin; k < end; ++k) {
       const bool behind = behind_surface[k];
       const double wk = double(positive.weight[k]);
@@ -630,6 +630,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
         if (behind) sums.selected_moved += wk;
       }
     }
+    chunk_sums[begin / kListGrain] = sums;
   });
   Sums all;
   for (const Sums& c : chunk_sums) all += c;
