@@ -9,30 +9,31 @@
 namespace isegman::segment {
 namespace {
 
-// A Gaussian of scale 1 cm (flat along z) centred at (x, 0, 0).
-void add_flat_gaussian(GaussianScene& scene, float x) {
-  scene.positions.insert(scene.positions.end(), {x, 0.f, 0.f});
-  scene.scales.insert(scene.scales.end(), {std::log(0.01f), std::log(0.01f), std::log(0.002f)});
-  scene.rotations.insert(scene.rotations.end(), {1, 0, 0, 0});
-  scene.opacity.push_back(0);
-}
-
-// Gaussians of scale 1 cm in rows along x: the part the votes select (0..9, x = 0..9 cm),
-// the rest of the whole touching it (10..19, x = 10..19 cm), and a neighbour standing
-// 10 cm apart (20..29, x = 30..39 cm).
+// Gaussians of scale 1 cm (flat along z) in a row along x: the part the votes select
+// (0..9, x = 0..9 cm), the rest of the whole touching it (10..19, x = 10..19 cm), and a
+// neighbour of `neighbour` Gaussians standing 10 cm apart (from x = 30 cm on). The whole
+// rule selects everything after the part; `own` of the neighbour's Gaussians (from the far
+// end) also pass on their own votes: a few of a neighbour's Gaussians seen mostly by the
+// views whose masks took it in.
 struct Row {
   GaussianScene scene;
-  VoteAccumulator votes{30};
-  std::vector<bool> selection = std::vector<bool>(30, true);
-  Row() {
+  VoteAccumulator votes;
+  std::vector<bool> selection;
+  explicit Row(uint32_t neighbour = 10, uint32_t own = 0)
+      : votes(20 + neighbour), selection(20 + neighbour, true) {
+    const uint32_t n = 20 + neighbour;
     ViewVotes positive, total;
-    for (uint32_t i = 0; i < 30; ++i) {
-      add_flat_gaussian(scene, 0.01f * float(i < 20 ? i : i + 10));
+    for (uint32_t i = 0; i < n; ++i) {
+      const float x = 0.01f * float(i < 20 ? i : i + 10);
+      scene.positions.insert(scene.positions.end(), {x, 0.f, 0.f});
+      scene.scales.insert(scene.scales.end(), {std::log(0.01f), std::log(0.01f), std::log(0.002f)});
+      scene.rotations.insert(scene.rotations.end(), {1, 0, 0, 0});
+      scene.opacity.push_back(0);
       const int64_t a = int64_t(1) << 24;
       total.index.push_back(i);
       total.weight.push_back(a);
       positive.index.push_back(i);
-      positive.weight.push_back(i < 10 ? a : a * 4 / 10);  // the whole rule selects 10..29
+      positive.weight.push_back(i < 10 || i >= n - own ? a : a * 4 / 10);
     }
     votes.add(positive, total);
   }
@@ -70,36 +71,13 @@ TEST(WholeIslands, ALinkFarEnoughJoinsTheNeighbourAndOffDropsNothing) {
   EXPECT_EQ(drop_whole_islands(none.selection, none.votes, none.scene, index, 0.8, 0.0, {}, on), 0u);
 }
 
-// The part the votes select (0..9) with the rest of its whole touching it (10..19), and a
-// neighbour of 100 Gaussians 10 cm apart (20..119) that the whole rule selects, `own` of
-// them (from the far end) also on their own votes: a few of a neighbour's Gaussians seen
-// mostly by the views whose masks took it in.
-struct PartlyAnchored {
-  GaussianScene scene;
-  VoteAccumulator votes{120};
-  std::vector<bool> selection = std::vector<bool>(120, true);
-  explicit PartlyAnchored(uint32_t own) {
-    ViewVotes positive, total;
-    for (uint32_t i = 0; i < 120; ++i) {
-      add_flat_gaussian(scene, 0.01f * float(i < 20 ? i : i + 10));
-      const int64_t a = int64_t(1) << 24;
-      total.index.push_back(i);
-      total.weight.push_back(a);
-      const bool selects = i < 10 || i >= 120 - own;
-      positive.index.push_back(i);
-      positive.weight.push_back(selects ? a : a * 4 / 10);
-    }
-    votes.add(positive, total);
-  }
-};
-
 TEST(WholeIslands, AnIslandIsKeptOnlyWhenWhatItsOwnVotesSelectIsARealShareOfIt) {
   IslandOptions o;
   o.enabled = true;
   o.link_sigmas = 1;
   o.min_own_share = 0.02;
   for (uint32_t own : {0u, 1u, 2u, 10u}) {
-    PartlyAnchored p(own);
+    Row p(100, own);
     const CentreIndex index(p.scene);
     const size_t dropped = drop_whole_islands(p.selection, p.votes, p.scene, index, 0.8, 0.0, {}, o);
     // Under 2 of its 100 Gaussians: the neighbour's dependent ones go; the part and the
@@ -111,7 +89,7 @@ TEST(WholeIslands, AnIslandIsKeptOnlyWhenWhatItsOwnVotesSelectIsARealShareOfIt) 
     for (uint32_t i = 20; i < 120; ++i) EXPECT_EQ(p.selection[i], kept || i >= 120 - own) << own << " " << i;
   }
   // Without the share, one Gaussian on its own votes anchors the whole neighbour.
-  PartlyAnchored one(1);
+  Row one(100, 1);
   const CentreIndex index(one.scene);
   o.min_own_share = 0;
   EXPECT_EQ(drop_whole_islands(one.selection, one.votes, one.scene, index, 0.8, 0.0, {}, o), 0u);
