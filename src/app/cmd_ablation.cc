@@ -118,6 +118,8 @@ int run_eval_ablation(const Args& args) {
       {"- far-behind check", [](segment::SessionOptions& o) { o.background_options.max_far_behind = 1; }},
       {"- minority granularity try", [](segment::SessionOptions& o) { o.larger_views_share = 1; }},
       {"- islands' own share", [](segment::SessionOptions& o) { o.whole_islands.min_own_share = 0; }},
+      {"- nearest estimate at the clicks",
+       [](segment::SessionOptions& o) { o.background_options.max_seed_radius = o.background_options.seed_radius; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

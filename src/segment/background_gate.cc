@@ -533,6 +533,13 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
 }
 
 namespace {
+// Whether pixel (u, v) lies within `radius` (per axis) of a click.
+bool near_a_seed(const BackgroundTarget& target, double u, double v, double radius) {
+  for (const BackgroundTarget::Seed& seed : target.seeds)
+    if (std::abs(u - seed.x) <= radius && std::abs(v - seed.y) <= radius) return true;
+  return false;
+}
+
 // Whether a click's rendered depth lies on or behind the surroundings' rendered surface at
 // its pixel (both as rendered, so no offset between them): a coarse pillar running from the
 // floor to the ceiling around it, clicked where no Gaussian is centred near the click.
@@ -567,16 +574,36 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
         pixel[2 * k] = int32_t(u);
         pixel[2 * k + 1] = int32_t(v);
       }
-      for (const BackgroundTarget::Seed& seed : target.seeds)
-        if (std::abs(u - seed.x) <= o.seed_radius && std::abs(v - seed.y) <= o.seed_radius) {
-          at_seed[k] = 1;
-          break;
-        }
+      at_seed[k] = near_a_seed(target, u, v, o.seed_radius);
     }
   });
   std::vector<std::pair<double, double>> seed_offsets;  // (offset, weight) of the clicked Gaussians
-  for (size_t k = 0; k < n; ++k)
-    if (at_seed[k] && !std::isnan(offset[k])) seed_offsets.push_back({offset[k], double(positive.weight[k])});
+  auto clicked_offsets = [&]() {
+    seed_offsets.clear();
+    for (size_t k = 0; k < n; ++k)
+      if (at_seed[k] && !std::isnan(offset[k])) seed_offsets.push_back({offset[k], double(positive.weight[k])});
+  };
+  clicked_offsets();
+  // Clicked Gaussians with no estimate at their pixels (the lines across the mask disagree
+  // there) say nothing of where the target lies against the surroundings, and the rest of it
+  // would be judged by a tolerance no clicked Gaussian checked (a rule 4 mm proud of a bench
+  // lost its ends as bench): the target is then the Gaussians nearest the clicks that have
+  // one, within twice, four times ... max_seed_radius / seed_radius times the radius, and
+  // where they lie in or behind the surface the view does not tell it from the surroundings.
+  // With none that near, the view is judged as one without Gaussians at its clicks.
+  bool widened = false;
+  if (seed_offsets.empty() && std::find(at_seed.begin(), at_seed.end(), 1) != at_seed.end())
+    for (double r = 2 * o.seed_radius; seed_offsets.empty() && r <= o.max_seed_radius; r *= 2) {
+      parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k) {
+          double u, v;
+          at_seed[k] = !std::isnan(offset[k]) && camera.project(scene.position(positive.index[k]), u, v) &&
+                       near_a_seed(target, u, v, r);
+        }
+      });
+      clicked_offsets();
+      widened = true;
+    }
   // A target only just in front of the background (slats 6 cm before a wall 4 m away lie
   // ~0.8 % nearer in inverse depth) would count as lying on it: the tolerance shrinks to
   // half the clicked Gaussians' (weighted median) offset, when that is at least min_tolerance
@@ -646,7 +673,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   // is centred at the clicks, the target itself.
   const bool target_clearly_in_front = seed_median >= far;  // false for NaN
   if (moved_entries == 0 || (!target_clearly_in_front && far_weight > o.max_far_behind * moved_weight) ||
-      (by_seeds && at_seeds_moved > 0.5 * at_seeds) ||
+      (by_seeds && at_seeds_moved > 0.5 * at_seeds) || (widened && !seed_offsets.empty() && seed_median <= tolerance) ||
       (!by_seeds && clicked_pixel_in_or_behind(target, background, tolerance)) ||
       (!by_seeds && selected > 0 && selected_moved > 0.5 * selected))
     return 0;

@@ -42,6 +42,8 @@ struct BackgroundOptions {
   // degrees of the surface's (|cos| >= this); 0: depth alone decides.
   double min_alignment = 0.8;
   double seed_radius = 3;     // pixels around a click whose Gaussians are the target
+  // ... widened (doubling) up to this when none of them has a surface estimate (seed_radius: never)
+  double max_seed_radius = 24;
   // A background hides what lies behind it: when more than this share of the weight the gate
   // would move lies over far_behind x the tolerance (before it is narrowed to the clicked
   // Gaussians) behind the estimate, and the clicked Gaussians do not lie clearly (as far) in
@@ -127,8 +129,11 @@ struct BackgroundTarget {
 // moved when that would take the target itself: most of the weight of the Gaussians centred
 // within seed_radius of a click (the object is not told from the surroundings by depth
 // here), or, where the view has no click, more than half of the selection's weight in the
-// mask. Where a click has no Gaussian centred within seed_radius (a coarse target of a few
-// large Gaussians), its pixel tells instead: nothing is moved when its rendered depth lies
+// mask. Where no Gaussian centred within seed_radius of a click has an estimate, the nearest
+// that have one (out to max_seed_radius) stand for the clicked ones, and nothing is moved
+// when they lie on or behind the surface (weighted median offset within the tolerance).
+// Where a click has no Gaussian centred within seed_radius (a coarse target of a few
+// large Gaussians), or none with an estimate out to max_seed_radius, its pixel tells instead: nothing is moved when its rendered depth lies
 // on or behind the surroundings' rendered surface there (within the tolerance). Nor when
 // most of what would be moved lies far behind the surface and the clicked Gaussians do not
 // lie clearly in front of it (max_far_behind). Returns the number moved.

@@ -327,6 +327,40 @@ TEST(BackgroundGate, ATargetJustInFrontOfTheWallNarrowsTheTolerance) {
   EXPECT_EQ(gate_background(poster.scene, poster.cam, bg, on_wall, p3, n3), 0u);
 }
 
+TEST(BackgroundGate, ClickedGaussiansWithoutAnEstimateAreJudgedByTheNearestWithOne) {
+  // Where the lines across the mask disagree at the click there is no estimate, so the
+  // clicked Gaussian tells nothing of where the target lies; the nearest Gaussians with an
+  // estimate do. A rule lying on a bench: its part 8 px from the click lies in the bench's
+  // surface, so the view cannot tell it from the bench and moves nothing. A target clearly
+  // in front: the bench seen beside it goes.
+  auto moved = [](double near_part_depth, const BackgroundOptions& o) {
+    GateScene s;
+    s.add(-1.15, -1.15, 5.0, 0.05, 0.05, 0.002);           // 0: the bench, lying in the surface, ~14 px off
+    s.add(0.0, 0.1, near_part_depth, 0.05, 0.05, 0.002);   // 1: the clicked Gaussian
+    s.add(0.67, 0.1, near_part_depth, 0.05, 0.05, 0.002);  // 2: the target ~8 px to the right
+    Image bg = background_inverse_depth(s.mask, s.depth, s.alpha, 3.8);
+    double u, v, u2, v2;
+    EXPECT_TRUE(s.cam.project(s.scene.position(1), u, v));
+    EXPECT_TRUE(s.cam.project(s.scene.position(2), u2, v2));
+    EXPECT_GT(std::abs(u2 - u), 2 * o.seed_radius);
+    EXPECT_LT(std::abs(u2 - u), 4 * o.seed_radius);
+    for (int y = int(v) - 3; y <= int(v) + 3; ++y)  // no estimate around the click
+      for (int x = int(u) - 3; x <= int(u) + 3; ++x) bg.at(x, y) = 0.f;
+    EXPECT_GT(bg.at(int(u2), int(v2)), 0.f);
+    BackgroundTarget clicked;
+    clicked.seeds.push_back({u, v});
+    ViewVotes positive = s.positive, neutral;
+    return gate_background(s.scene, s.cam, bg, clicked, positive, neutral, o);
+  };
+  const BackgroundOptions o;
+  EXPECT_EQ(moved(4.99, o), 0u);  // the rule 0.2 % proud of the bench: nothing
+  EXPECT_EQ(moved(4.0, o), 1u);   // 25 % in front: the bench beside it
+  BackgroundOptions clicked_only = o;  // judged by the clicked Gaussian alone, which says nothing
+  clicked_only.max_seed_radius = o.seed_radius;
+  EXPECT_EQ(moved(4.99, clicked_only), 2u);  // the bench and the rule's part with it
+  EXPECT_EQ(moved(4.0, clicked_only), 1u);
+}
+
 TEST(BackgroundGate, OffsetsCountFromWhereTheSurroundingsGaussiansLie) {
   // A clean wall renders in front of its Gaussians' centres (blending favours the nearer
   // ones): here it renders at 5 while its Gaussians lie at 5.05. A thin object 3.5 cm in
