@@ -133,8 +133,9 @@ struct BackgroundTarget {
 // that have one (out to max_seed_radius) stand for the clicked ones, and nothing is moved
 // when they lie on or behind the surface (weighted median offset within the tolerance).
 // Where a click has no Gaussian centred within seed_radius (a coarse target of a few
-// large Gaussians), or none with an estimate out to max_seed_radius, its pixel tells instead: nothing is moved when its rendered depth lies
-// on or behind the surroundings' rendered surface there (within the tolerance). Nor when
+// large Gaussians), or none with an estimate out to max_seed_radius, its pixel tells
+// instead: nothing is moved when its rendered depth lies on or behind the surroundings'
+// rendered surface there (within the tolerance). Nor when
 // most of what would be moved lies far behind the surface and the clicked Gaussians do not
 // lie clearly in front of it (max_far_behind). Returns the number moved.
 // `threads` (0: every core) does not change the result.

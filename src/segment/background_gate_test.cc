@@ -337,7 +337,7 @@ TEST(BackgroundGate, ClickedGaussiansWithoutAnEstimateAreJudgedByTheNearestWithO
     GateScene s;
     s.add(-1.15, -1.15, 5.0, 0.05, 0.05, 0.002);           // 0: the bench, lying in the surface, ~14 px off
     s.add(0.0, 0.1, near_part_depth, 0.05, 0.05, 0.002);   // 1: the clicked Gaussian
-    s.add(0.67, 0.1, near_part_depth, 0.05, 0.05, 0.002);  // 2: the target ~8 px to the right
+    s.add(0.67, 0.1, near_part_depth, 0.05, 0.05, 0.002);  // 2: the target 8-10 px to the right
     Image bg = background_inverse_depth(s.mask, s.depth, s.alpha, 3.8);
     double u, v, u2, v2;
     EXPECT_TRUE(s.cam.project(s.scene.position(1), u, v));
