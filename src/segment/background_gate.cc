@@ -584,7 +584,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
       if (at_seed[k] && !std::isnan(offset[k])) seed_offsets.push_back({offset[k], double(positive.weight[k])});
   };
   clicked_offsets();
-  // Clicked Gaussians with no estimate at their pixels (the lines across the mask disagree
+  // Clicked Gaussians with no estimate at their pixels (too few lines across the mask agree
   // there) say nothing of where the target lies against the surroundings, and the rest of it
   // would be judged by a tolerance no clicked Gaussian checked (a rule 4 mm proud of a bench
   // lost its ends as bench): the target is then the Gaussians nearest the clicks that have
