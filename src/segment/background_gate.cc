@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "core/parallel.h"
 #include "core/random.h"
@@ -533,11 +534,13 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
 }
 
 namespace {
-// Whether pixel (u, v) lies within `radius` (per axis) of a click.
-bool near_a_seed(const BackgroundTarget& target, double u, double v, double radius) {
+// How far pixel (u, v) lies from the nearest click, per axis (the larger of |du| and |dv|):
+// it lies within a radius r of a click when this is <= r. Infinite without clicks.
+double distance_to_seeds(const BackgroundTarget& target, double u, double v) {
+  double d = std::numeric_limits<double>::infinity();
   for (const BackgroundTarget::Seed& seed : target.seeds)
-    if (std::abs(u - seed.x) <= radius && std::abs(v - seed.y) <= radius) return true;
-  return false;
+    d = std::min(d, std::max(std::abs(u - seed.x), std::abs(v - seed.y)));
+  return d;
 }
 
 // Whether a click's rendered depth lies on or behind the surroundings' rendered surface at
@@ -563,6 +566,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   const size_t n = positive.index.size();
   std::vector<double> offset(n, std::nan(""));
   std::vector<int32_t> pixel(2 * n, -1);  // where the centre projects
+  std::vector<double> seed_distance(n, std::numeric_limits<double>::infinity());  // distance_to_seeds
   std::vector<uint8_t> at_seed(n, 0);
   parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
@@ -574,7 +578,8 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
         pixel[2 * k] = int32_t(u);
         pixel[2 * k + 1] = int32_t(v);
       }
-      at_seed[k] = near_a_seed(target, u, v, o.seed_radius);
+      seed_distance[k] = distance_to_seeds(target, u, v);
+      at_seed[k] = seed_distance[k] <= o.seed_radius;
     }
   });
   std::vector<std::pair<double, double>> seed_offsets;  // (offset, weight) of the clicked Gaussians
@@ -594,13 +599,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   bool widened = false;
   if (seed_offsets.empty() && std::find(at_seed.begin(), at_seed.end(), 1) != at_seed.end())
     for (double r = 2 * o.seed_radius; seed_offsets.empty() && r <= o.max_seed_radius; r *= 2) {
-      parallel_chunks(n, kListGrain, threads, [&](int, size_t begin, size_t end) {
-        for (size_t k = begin; k < end; ++k) {
-          double u, v;
-          at_seed[k] = !std::isnan(offset[k]) && camera.project(scene.position(positive.index[k]), u, v) &&
-                       near_a_seed(target, u, v, r);
-        }
-      });
+      for (size_t k = 0; k < n; ++k) at_seed[k] = !std::isnan(offset[k]) && seed_distance[k] <= r;
       clicked_offsets();
       widened = true;
     }

@@ -328,7 +328,7 @@ TEST(BackgroundGate, ATargetJustInFrontOfTheWallNarrowsTheTolerance) {
 }
 
 TEST(BackgroundGate, ClickedGaussiansWithoutAnEstimateAreJudgedByTheNearestWithOne) {
-  // Where the lines across the mask disagree at the click there is no estimate, so the
+  // Where too few lines across the mask agree at the click there is no estimate, so the
   // clicked Gaussian tells nothing of where the target lies; the nearest Gaussians with an
   // estimate do. A rule lying on a bench: its part 8 px from the click lies in the bench's
   // surface, so the view cannot tell it from the bench and moves nothing. A target clearly
