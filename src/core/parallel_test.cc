@@ -54,5 +54,19 @@ TEST(ParallelFor, RunsEveryTaskOnce) {
   for (auto& h : hits) EXPECT_EQ(h.load(), 1);
 }
 
+TEST(ListGrain, LongListsGiveTwoWorkersSeveralChunksEachAndShortOnesStayWhole) {
+  // A short list is one chunk: starting a worker would cost more than the pass.
+  EXPECT_EQ(list_grain(1), list_grain(8192));
+  EXPECT_GE(list_grain(5000), size_t(5000));
+  // 100k entries: eight chunks or more (in chunks of kListGrain it was two, one of 35k).
+  for (size_t n : {size_t(50000), size_t(100000), size_t(300000)}) {
+    const size_t g = list_grain(n), chunks = (n + g - 1) / g;
+    EXPECT_GE(chunks, size_t(6)) << n;
+    EXPECT_LE(chunks, size_t(8)) << n;
+  }
+  // A very long list keeps kListGrain chunks (the per-chunk buffers stay small).
+  EXPECT_EQ(list_grain(size_t(1) << 24), kListGrain);
+}
+
 }  // namespace
 }  // namespace isegman

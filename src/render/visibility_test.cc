@@ -243,7 +243,7 @@ TEST(Visibility, TilesListingFindsTheWantedAndListsTheRestsGaussians) {
 }
 
 TEST(Visibility, SplitInOrderKeepsEachSidesOrderOnAnyNumberOfThreads) {
-  // Three chunks and a bit (kListGrain entries each), flags in an irregular pattern.
+  // Several chunks and a bit (list_grain(n) entries each), flags in an irregular pattern.
   const size_t n = 3 * kListGrain + 1234;
   GaussianWeights list;
   std::vector<uint8_t> flags(n);

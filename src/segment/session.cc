@@ -367,9 +367,9 @@ std::vector<uint8_t> selection_tiles(const GaussianScene& scene, const SegmentVi
   // The box of every member's extent: chunks in parallel, each its own box, then their
   // union (minima and maxima do not depend on the order).
   struct Box { double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30; };
-  std::vector<Box> boxes((members.size() + kListGrain - 1) / kListGrain);
-  parallel_chunks(members.size(), kListGrain, threads, [&](int, size_t a, size_t e) {
-    Box& b = boxes[a / kListGrain];
+  std::vector<Box> boxes((members.size() + list_grain(members.size()) - 1) / list_grain(members.size()));
+  parallel_chunks(members.size(), list_grain(members.size()), threads, [&](int, size_t a, size_t e) {
+    Box& b = boxes[a / list_grain(members.size())];
     for (size_t k = a; k < e; ++k) {
       const uint32_t i = members[k];
       if (values[i] <= 0) continue;

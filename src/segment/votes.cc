@@ -44,7 +44,7 @@ namespace {
 // it write disjoint sums, and integer sums do not depend on the order.
 void scatter_add(ZeroedArray<int64_t>& into, const ViewVotes& v, int64_t sign, int threads) {
   const size_t n = v.index.size();
-  parallel_chunks(n, kListGrain, threads, [&](int, size_t a, size_t e) {
+  parallel_chunks(n, list_grain(n), threads, [&](int, size_t a, size_t e) {
     for (size_t k = a; k < e; ++k) into[v.index[k]] += sign * v.weight[k];
   });
 }
@@ -85,7 +85,7 @@ ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const 
   // Chunks of `positive` in parallel, each into its own list; concatenated in order, the
   // lists are what one pass would give.
   const size_t n = positive.index.size();
-  const size_t grain = std::max(kListGrain, (n + 3) / 4);
+  const size_t grain = std::max(list_grain(n), (n + 3) / 4);
   std::vector<ViewVotes> parts((n + grain - 1) / grain);
   auto run = [&](int, size_t begin, size_t end) {
     ViewVotes out;  // moved in at the end: the chunks' lists share cache lines
