@@ -411,6 +411,19 @@ std::vector<uint8_t> tiles_listing(const PreparedFrame& frame, const std::vector
   return out;
 }
 
+namespace {
+// The tiles a splat reaches: the pixels raster_tile evaluates for it, [ceil(mx - hx),
+// floor(mx + hx)] and the same in y, clipped to the image. False when none is inside.
+bool tile_box_of(const Splat& s, int W, int H, TileBox& box) {
+  const float hx = decode_half_width(s.hx), hy = decode_half_width(s.hy);
+  const float x0 = std::max(std::ceil(s.mx - hx), 0.f), x1 = std::min(std::floor(s.mx + hx), float(W - 1));
+  const float y0 = std::max(std::ceil(s.my - hy), 0.f), y1 = std::min(std::floor(s.my + hy), float(H - 1));
+  if (x0 > x1 || y0 > y1) return false;
+  box = {int(x0) / kTileSize, int(y0) / kTileSize, int(x1) / kTileSize, int(y1) / kTileSize};
+  return true;
+}
+}  // namespace
+
 bool splat_tile_box(const PreparedFrame& frame, uint32_t gaussian, TileBox& box, size_t& cursor) {
   const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
   if (!d.compact) return false;
@@ -427,14 +440,32 @@ bool splat_tile_box(const PreparedFrame& frame, uint32_t gaussian, TileBox& box,
                              gaussian, [](const Splat& s, uint32_t g) { return s.index < g; });
   cursor = size_t(it - sp.begin());
   if (it == sp.end() || it->index != gaussian) return false;
-  // The pixels raster_tile evaluates for it: [ceil(mx - hx), floor(mx + hx)], the same in y.
-  const float hx = decode_half_width(it->hx), hy = decode_half_width(it->hy);
+  return tile_box_of(*it, frame.camera.width, frame.camera.height, box);
+}
+
+std::vector<uint8_t> tiles_reached(const PreparedFrame& frame, const std::vector<float>& values, int threads) {
+  const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
+  if (values.size() != frame.gaussians) throw Error("tiles_reached: values do not match the scene");
+  const size_t gx = size_t(frame.grid_x), n = d.splats.size();
   const int W = frame.camera.width, H = frame.camera.height;
-  const float x0 = std::max(std::ceil(it->mx - hx), 0.f), x1 = std::min(std::floor(it->mx + hx), float(W - 1));
-  const float y0 = std::max(std::ceil(it->my - hy), 0.f), y1 = std::min(std::floor(it->my + hy), float(H - 1));
-  if (x0 > x1 || y0 > y1) return false;
-  box = {int(x0) / kTileSize, int(y0) / kTileSize, int(x1) / kTileSize, int(y1) / kTileSize};
-  return true;
+  // Each worker flags its own copy (no atomics), or-ed together at the end.
+  const size_t grain = list_grain(n);
+  std::vector<std::vector<uint8_t>> flags((n + grain - 1) / grain);
+  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+    std::vector<uint8_t> f(gx * size_t(frame.grid_y), 0);  // a local, moved in at the end
+    TileBox box;
+    for (size_t k = begin; k < end; ++k) {
+      const Splat& s = d.splats[k];
+      if (!(values[s.index] > 0) || !tile_box_of(s, W, H, box)) continue;
+      for (int ty = box.y0; ty <= box.y1; ++ty)
+        for (int tx = box.x0; tx <= box.x1; ++tx) f[size_t(ty) * gx + size_t(tx)] = 1;
+    }
+    flags[begin / grain] = std::move(f);
+  });
+  std::vector<uint8_t> out(gx * size_t(frame.grid_y), 0);
+  for (const std::vector<uint8_t>& f : flags)
+    for (size_t t = 0; t < f.size(); ++t) out[t] |= f[t];
+  return out;
 }
 
 }  // namespace isegman

@@ -80,4 +80,10 @@ struct TileBox {
 };
 bool splat_tile_box(const PreparedFrame& frame, uint32_t gaussian, TileBox& box, size_t& cursor);
 
+// The tiles the splats of the Gaussians with values > 0 reach (one value per Gaussian of
+// the scene; flags over the frame's tiles): the only tiles where their blend is not 0. One
+// pass over the frame's splats, which hold each one's pixel box already (a compacted
+// frame's in Gaussian order, so the values are read in order).
+std::vector<uint8_t> tiles_reached(const PreparedFrame& frame, const std::vector<float>& values, int threads = 0);
+
 }  // namespace isegman

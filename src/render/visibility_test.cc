@@ -242,6 +242,44 @@ TEST(Visibility, TilesListingFindsTheWantedAndListsTheRestsGaussians) {
                Error);
 }
 
+TEST(Visibility, TilesReachedAreTheTilesWhoseListsNameAValuedGaussian) {
+  // A few Gaussians carry values: the tiles their splats reach are the tiles whose lists
+  // name one of them (binning uses the same pixel boxes), and a render over those tiles
+  // alone has every pixel of the render over all tiles.
+  const GaussianScene g = dense_cloud(8000, 9);
+  const Camera cam = Camera::look_at({0.3, -3.0, 0.8}, {0, 0, 0}, {0, 0, 1}, 130, 90, 60);
+  PreparedFrame plain = prepare_frame(g, cam), compact = prepare_frame(g, cam);
+  compact_frame(compact, {});
+  const size_t tiles = size_t(plain.grid_x) * plain.grid_y;
+  uint64_t s = 31;
+  auto rnd = [&] { return (s = s * 6364136223846793005ull + 1442695040888963407ull) >> 33; };
+  RenderSettings rs;
+  rs.color = rs.depth = false;
+  for (int trial = 0; trial < 3; ++trial) {
+    std::vector<float> values(g.size(), 0.f);
+    std::vector<bool> valued(g.size(), false);
+    for (size_t j = 0; j < g.size(); ++j)
+      if (rnd() % (trial == 0 ? 1000 : 60) == 0) {
+        values[j] = trial == 2 ? 0.25f + float(rnd() % 4) * 0.25f : 1.f;
+        valued[j] = true;
+      }
+    const std::vector<uint8_t> listing = tiles_listing(plain, std::vector<uint8_t>(tiles, 1), valued, 1);
+    const std::vector<uint8_t> reached = tiles_reached(plain, values, 3);
+    EXPECT_EQ(reached, listing) << "trial " << trial;
+    size_t flagged = 0;
+    for (uint8_t f : reached) flagged += f;
+    EXPECT_GT(flagged, 0u);
+    EXPECT_LT(flagged, tiles) << "trial " << trial << ": the test needs tiles no valued splat reaches";
+    for (const PreparedFrame* frame : {&plain, &compact}) {
+      const std::vector<uint8_t> t = tiles_reached(*frame, values, 2);
+      const Image all = rasterize(*frame, rs, &values).value;
+      const Image only = rasterize(*frame, rs, &values, nullptr, &t).value;
+      EXPECT_EQ(only.data, all.data) << "trial " << trial;
+    }
+  }
+  EXPECT_THROW(tiles_reached(plain, std::vector<float>(3, 1.f)), Error);
+}
+
 TEST(Visibility, SplitInOrderKeepsEachSidesOrderOnAnyNumberOfThreads) {
   // Several chunks and a bit (list_grain(n) entries each), flags in an irregular pattern.
   const size_t n = 3 * kListGrain + 1234;

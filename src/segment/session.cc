@@ -358,56 +358,14 @@ bool Session::undo() {
 
 namespace {
 
-// Tiles the selection can reach in a view: the bounding box of its Gaussians' 3-sigma
-// extents (largest axis) around their projected centres. A coverage render needs no others.
-// `members`: a superset of the Gaussians with values > 0 (the others are not visited).
-std::vector<uint8_t> selection_tiles(const GaussianScene& scene, const SegmentView& view, const std::vector<float>& values,
-                                     const std::vector<uint32_t>& members, int threads) {
-  const Camera& c = view.camera;
-  // The box of every member's extent: chunks in parallel, each its own box, then their
-  // union (minima and maxima do not depend on the order).
-  struct Box { double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30; };
-  std::vector<Box> boxes((members.size() + list_grain(members.size()) - 1) / list_grain(members.size()));
-  parallel_chunks(members.size(), list_grain(members.size()), threads, [&](int, size_t a, size_t e) {
-    Box& b = boxes[a / list_grain(members.size())];
-    for (size_t k = a; k < e; ++k) {
-      const uint32_t i = members[k];
-      if (values[i] <= 0) continue;
-      const Vec3 p = c.world_to_camera({scene.positions[3 * i], scene.positions[3 * i + 1], scene.positions[3 * i + 2]});
-      if (p.z <= 0.2) continue;  // the rasteriser's near plane culls it
-      const double s = scene.largest_scale(i);
-      const double u = c.fx * p.x / p.z + c.cx, v = c.fy * p.y / p.z + c.cy;
-      const double r = 3 * s * std::max(c.fx, c.fy) / p.z + 2;
-      b.x0 = std::min(b.x0, u - r);
-      b.y0 = std::min(b.y0, v - r);
-      b.x1 = std::max(b.x1, u + r);
-      b.y1 = std::max(b.y1, v + r);
-    }
-  });
-  double x0 = 1e30, y0 = 1e30, x1 = -1e30, y1 = -1e30;
-  for (const Box& b : boxes) {
-    x0 = std::min(x0, b.x0);
-    y0 = std::min(y0, b.y0);
-    x1 = std::max(x1, b.x1);
-    y1 = std::max(y1, b.y1);
-  }
-  const int gx = view.frame.grid_x, gy = view.frame.grid_y;
-  std::vector<uint8_t> tiles(size_t(gx) * gy, 0);
-  if (x1 < 0 || y1 < 0 || x0 >= c.width || y0 >= c.height) return tiles;
-  const int tx0 = std::clamp(int(std::floor(x0 / kTileSize)), 0, gx - 1), tx1 = std::clamp(int(x1 / kTileSize), 0, gx - 1);
-  const int ty0 = std::clamp(int(std::floor(y0 / kTileSize)), 0, gy - 1), ty1 = std::clamp(int(y1 / kTileSize), 0, gy - 1);
-  for (int ty = ty0; ty <= ty1; ++ty)
-    for (int tx = tx0; tx <= tx1; ++tx) tiles[size_t(ty) * gx + tx] = 1;
-  return tiles;
-}
-
-Image selection_values_coverage(const GaussianScene& scene, const SegmentView& view, const std::vector<float>& values,
-                                const std::vector<uint32_t>& members, int threads) {
+// The blend of per-Gaussian values (the selection's) in a view: its coverage there.
+Image selection_values_coverage(const SegmentView& view, const std::vector<float>& values, int threads) {
   RenderSettings rs;
   rs.color = false;
   rs.depth = false;
   rs.threads = threads;
-  const std::vector<uint8_t> tiles = selection_tiles(scene, view, values, members, threads);
+  // Only the tiles its splats reach: elsewhere the blend of the values is 0.
+  const std::vector<uint8_t> tiles = tiles_reached(view.frame, values, threads);
   return rasterize(view.frame, rs, &values, nullptr, &tiles).value;
 }
 
@@ -935,7 +893,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         const std::vector<float>& values = live.values();
         if (several) {  // the coverage decides the candidate, then the candidate's votes
           TimeInto timed{part.coverage};
-          coverage = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
+          coverage = selection_values_coverage(views_[k], values, o.threads);
           take(vs, k, results[k],
                          respect_negatives(r, inspect ? fallback_candidate(r, coverage) : choose(r, &coverage, o.min_coverage_pixels),
                                            vs, &conflict));
@@ -1059,7 +1017,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
           // each of its three candidates, the selection's box the part in view.
           if (o.selection_prompt_growth) {
             std::vector<models::Click> prompt;
-            const Image full = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
+            const Image full = selection_values_coverage(views_[k], values, o.threads);
             if (prompt_from_coverage(full, prompt)) {
               ViewState grown = vs;
               const auto boxed = std::make_shared<const models::SegmentResult>(sam_->decode(views_[k].embedding, prompt));
@@ -1162,7 +1120,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       Image cov;
       {
         TimeInto timed{part.coverage};
-        cov = selection_values_coverage(scene_, views_[k], values, live.members(), o.threads);
+        cov = selection_values_coverage(views_[k], values, o.threads);
       }
       int covered = 0;
       for (float v : cov.data) covered += v > 0.5f;
