@@ -120,6 +120,7 @@ int run_eval_ablation(const Args& args) {
       {"- islands' own share", [](segment::SessionOptions& o) { o.whole_islands.min_own_share = 0; }},
       {"- nearest estimate at the clicks",
        [](segment::SessionOptions& o) { o.background_options.max_seed_radius = o.background_options.seed_radius; }},
+      {"- set aside by several views", [](segment::SessionOptions& o) { o.attached_parts.min_set_aside_views = 1; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

@@ -21,7 +21,7 @@ size_t add_attached_parts(std::vector<bool>& selection, const VoteAccumulator& v
   std::vector<bool> open(selection.size(), false);
   std::vector<uint32_t> listed;
   for (uint32_t j : candidates) {
-    if (selection[j] || apart_flag[j] || (!set_aside.empty() && set_aside[j]) || (!excluded.empty() && excluded[j]))
+    if (selection[j] || apart_flag[j] || (!set_aside.empty() && set_aside[j] >= o.min_set_aside_views) || (!excluded.empty() && excluded[j]))
       continue;
     const double a = double(A[j]), p = double(P[j]);
     if (A[j] <= 0 || A[j] < min_fixed || p <= o.min_plain_share * a || p <= o.min_share * (a - double(W[j]))) continue;

@@ -82,13 +82,21 @@ TEST(AttachedParts, APartAMinorityMasksJoinsWhereItAttaches) {
   EXPECT_EQ(count(off.selection), 10u);
 }
 
-TEST(AttachedParts, WhatAViewSetAsideOrTheUserExcludedBreaksTheChain) {
+TEST(AttachedParts, WhatSeveralViewsSetAsideOrTheUserExcludedBreaksTheChain) {
+  const AttachedPartsOptions o = on();
+  ASSERT_GT(o.min_set_aside_views, 1);
   Line l = parts();
   const CentreIndex index(l.scene);
   std::vector<uint8_t> aside(30, 0);
-  aside[12] = 1;  // behind the target in some view: 12 stays out, and 13, 14 no longer attach
-  EXPECT_EQ(add_attached_parts(l.selection, l.votes, 0.0, l.candidates, aside, {}, {}, l.scene, index, on()), 2u);
+  // Behind the target in enough views: 12 stays out, and 13, 14 no longer attach.
+  aside[12] = uint8_t(o.min_set_aside_views);
+  EXPECT_EQ(add_attached_parts(l.selection, l.votes, 0.0, l.candidates, aside, {}, {}, l.scene, index, o), 2u);
   for (uint32_t i = 10; i < 15; ++i) EXPECT_EQ(l.selection[i], i < 12) << i;
+  // Set aside by one view fewer: that view's gate alone does not keep the part out.
+  Line fewer = parts();
+  aside[12] = uint8_t(o.min_set_aside_views - 1);
+  EXPECT_EQ(add_attached_parts(fewer.selection, fewer.votes, 0.0, fewer.candidates, aside, {}, {}, fewer.scene, index, o), 10u);  // as with nothing set aside
+  for (uint32_t i = 10; i < 15; ++i) EXPECT_TRUE(fewer.selection[i]) << i;
   Line ex = parts();
   std::vector<bool> excluded(30, false);
   excluded[10] = true;  // the first link

@@ -740,7 +740,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     return all_votes;
   };
 
-  // Per Gaussian: set aside from the target by some view's depth layers or background gate
+  // Per Gaussian: how many views' depth layers or background gate set it aside from the target
   // this round (attached_parts.h).
   std::vector<uint8_t> set_aside;
 
@@ -794,10 +794,11 @@ RoundReport Session::run_round(State& next, const State& prev) {
                                                 votes_against ? against : vs.neutral, o.background_options, o.threads,
                                                 surface);
     }
-    if (o.attached_parts.enabled) {  // what this view set aside from the target joins no part
+    if (o.attached_parts.enabled) {  // what enough views set aside from the target joins no part
       if (set_aside.size() != scene_.size()) set_aside.assign(scene_.size(), 0);
-      for (uint32_t j : vs.neutral.index) set_aside[j] = 1;
-      for (uint32_t j : against.index) set_aside[j] = 1;
+      auto count = [&](uint32_t j) { set_aside[j] = uint8_t(std::min(255, set_aside[j] + 1)); };
+      for (uint32_t j : vs.neutral.index) count(j);  // (a view's neutral and against lists are disjoint)
+      for (uint32_t j : against.index) count(j);
     }
     vs.whole_pixels = 0;
     ViewVotes whole;
