@@ -65,15 +65,16 @@ inline void parallel_for(size_t tasks, int threads, const std::function<void(int
   if (error) std::rethrow_exception(error);
 }
 
-// Chunk size for per-element passes over long lists (a view's votes, a mask's Gaussians):
-// a list no longer than one chunk runs on the calling thread, where starting workers would
-// cost more than the pass.
+// The largest chunk of a per-element pass over a long list (a view's votes, a mask's
+// Gaussians; list_grain below sizes the chunks).
 constexpr size_t kListGrain = size_t(1) << 16;
 
 // The chunk size for a per-element pass over a list of n entries: kListGrain at most, and
 // small enough that a list of a few times kListGrain still gives two workers several chunks
 // each (in chunks of kListGrain a list of 100k entries leaves one worker idle for a third of
-// the pass). A function of n alone, so what chunks sum or sort is the same on any machine.
+// the pass), and a list of up to 8,192 entries one chunk, run on the calling thread, where
+// starting a worker would cost more than the pass. A function of n alone, so what chunks
+// sum or sort is the same on any machine.
 inline size_t list_grain(size_t n) {
   constexpr size_t kMinGrain = size_t(1) << 13, kChunks = 8;
   const size_t even = (n + kChunks - 1) / kChunks;

@@ -61,17 +61,18 @@ GaussianWeights join_in_order(std::vector<GaussianWeights> parts) {
 
 SplitWeights split_in_order(const GaussianWeights& list, const std::vector<uint8_t>& flagged, int threads) {
   const size_t n = list.index.size();
-  const size_t chunks = (n + list_grain(n) - 1) / list_grain(n);
+  const size_t grain = list_grain(n);
+  const size_t chunks = (n + grain - 1) / grain;
   std::vector<GaussianWeights> flagged_parts(chunks), rest_parts(chunks);
-  parallel_chunks(n, list_grain(n), threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
     GaussianWeights in, out;  // locals, moved in at the end: the chunks' lists share cache lines
     for (size_t k = begin; k < end; ++k) {
       GaussianWeights& to = flagged[k] ? in : out;
       to.index.push_back(list.index[k]);
       to.weight.push_back(list.weight[k]);
     }
-    flagged_parts[begin / list_grain(n)] = std::move(in);
-    rest_parts[begin / list_grain(n)] = std::move(out);
+    flagged_parts[begin / grain] = std::move(in);
+    rest_parts[begin / grain] = std::move(out);
   });
   return {join_in_order(std::move(flagged_parts)), join_in_order(std::move(rest_parts))};
 }

@@ -26,12 +26,13 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
   // Chunks of samples in parallel, each with its own partial figures. The weights are whole
   // numbers of fixed-point units, so their sums are exact in any order, and so is the result.
   const size_t n = depth.size();
-  const size_t chunks = std::max<size_t>(1, (n + list_grain(n) - 1) / list_grain(n));
+  const size_t grain = list_grain(n);
+  const size_t chunks = std::max<size_t>(1, (n + grain - 1) / grain);
   struct Span {
     double total = 0, lo = 1e300, hi = 0;
   };
   std::vector<Span> spans(chunks);
-  parallel_chunks(n, list_grain(n), threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
     Span sp;  // in registers: the chunks' spans share cache lines
     for (size_t i = begin; i < end; ++i) {
       if (!counts(depth[i], weight[i])) continue;
@@ -39,7 +40,7 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
       sp.lo = std::min(sp.lo, double(depth[i]));
       sp.hi = std::max(sp.hi, double(depth[i]));
     }
-    spans[begin / list_grain(n)] = sp;
+    spans[begin / grain] = sp;
   });
   double total = 0, lo = 1e300, hi = 0;
   for (const Span& sp : spans) {
@@ -57,9 +58,9 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
   const bool extents = extent && o.extent_sigmas > 0;
   std::vector<std::vector<double>> hists(chunks);
   std::vector<std::vector<char>> covers(chunks);
-  parallel_chunks(n, list_grain(n), threads, [&](int, size_t begin, size_t end) {
-    std::vector<double>& h = hists[begin / list_grain(n)];
-    std::vector<char>& c = covers[begin / list_grain(n)];
+  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+    std::vector<double>& h = hists[begin / grain];
+    std::vector<char>& c = covers[begin / grain];
     h.assign(size_t(bins), 0.0);
     c.assign(size_t(bins), 0);
     for (size_t i = begin; i < end; ++i) {
@@ -233,6 +234,7 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
   GateReport rep;
   neutral = ViewVotes{};
   const size_t n = positive.index.size();
+  const size_t grain = list_grain(n);
   const int R = std::max(1, o.region);
   const int gx = std::max(1, (camera.width + R - 1) / R), gy = std::max(1, (camera.height + R - 1) / R);
   std::vector<float> depth(n), extent(n);
@@ -240,7 +242,7 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
   std::vector<char> selected(n, 0);
   std::vector<int32_t> region(n, -1);
   // Per entry, independent: chunks in parallel.
-  parallel_chunks(n, list_grain(n), threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       const uint32_t g = positive.index[k];
       const Vec3 centre{scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]};
@@ -258,10 +260,10 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
   // depth_layers' own; elsewhere the extent stays 0, unread.
   if (o.extent_sigmas > 0) {
     const bool local = selection && o.region > 0;
-    const size_t regions = local ? size_t(gx) * gy : 0, chunks = (n + list_grain(n) - 1) / list_grain(n);
+    const size_t regions = local ? size_t(gx) * gy : 0, chunks = (n + grain - 1) / grain;
     std::vector<double> chunk_total(chunks, 0.0);
     std::vector<std::vector<double>> chunk_regions(chunks);
-    parallel_chunks(n, list_grain(n), threads, [&](int, size_t begin, size_t end) {
+    parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
       double t = 0;
       std::vector<double> r(regions, 0.0);  // a local, moved in at the end
       for (size_t k = begin; k < end; ++k) {
@@ -269,8 +271,8 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
         t += weight[k];
         if (local && region[k] >= 0) r[size_t(region[k])] += weight[k];
       }
-      chunk_total[begin / list_grain(n)] = t;
-      chunk_regions[begin / list_grain(n)] = std::move(r);
+      chunk_total[begin / grain] = t;
+      chunk_regions[begin / grain] = std::move(r);
     });
     double total = 0;  // sums of whole numbers: the same in any order
     std::vector<double> region_total(regions, 0.0);
@@ -278,7 +280,7 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
       total += chunk_total[c];
       for (size_t r = 0; r < regions; ++r) region_total[r] += chunk_regions[c][r];
     }
-    parallel_chunks(n, list_grain(n), threads, [&](int, size_t begin, size_t end) {
+    parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
       for (size_t k = begin; k < end; ++k) {
         const bool read = reads_extent(depth[k], weight[k], total, o) ||
                           (local && region[k] >= 0 && reads_extent(depth[k], weight[k], region_total[size_t(region[k])], o));

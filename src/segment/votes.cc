@@ -44,7 +44,8 @@ namespace {
 // it write disjoint sums, and integer sums do not depend on the order.
 void scatter_add(ZeroedArray<int64_t>& into, const ViewVotes& v, int64_t sign, int threads) {
   const size_t n = v.index.size();
-  parallel_chunks(n, list_grain(n), threads, [&](int, size_t a, size_t e) {
+  const size_t grain = list_grain(n);
+  parallel_chunks(n, grain, threads, [&](int, size_t a, size_t e) {
     for (size_t k = a; k < e; ++k) into[v.index[k]] += sign * v.weight[k];
   });
 }
