@@ -244,8 +244,9 @@ TEST(Visibility, TilesListingFindsTheWantedAndListsTheRestsGaussians) {
 
 TEST(Visibility, TilesReachedAreTheTilesWhoseListsNameAValuedGaussian) {
   // A few Gaussians carry values: the tiles their splats reach are the tiles whose lists
-  // name one of them (binning uses the same pixel boxes), and a render over those tiles
-  // alone has every pixel of the render over all tiles.
+  // name one of them (binning boxes each splat by its unrounded half-widths, which the
+  // stored ones round up by under 1/16 px: on this scene no box crosses a tile edge in that
+  // margin), and a render over those tiles alone has every pixel of the render over all tiles.
   const GaussianScene g = dense_cloud(8000, 9);
   const Camera cam = Camera::look_at({0.3, -3.0, 0.8}, {0, 0, 0}, {0, 0, 1}, 130, 90, 60);
   PreparedFrame plain = prepare_frame(g, cam), compact = prepare_frame(g, cam);
