@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/worker_pool.h"
 
 namespace isegman {
 
@@ -36,7 +37,7 @@ inline void parallel_for(size_t tasks, int threads, const std::function<void(int
   std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
-  auto body = [&](int w) {
+  const std::function<void(int)> body = [&](int w) {
     try {
       for (size_t t; (t = next.fetch_add(1)) < tasks;) fn(w, t);
     } catch (...) {
@@ -45,6 +46,12 @@ inline void parallel_for(size_t tasks, int threads, const std::function<void(int
       next = tasks;
     }
   };
+  if (run_on_pool(workers, body)) {
+    if (error) std::rethrow_exception(error);
+    return;
+  }
+  // The pool is busy (a parallel_for inside a task, or on another thread) or cannot serve
+  // this many: threads of this call's own.
   std::vector<std::thread> pool;
   pool.reserve(size_t(workers));
   std::string start_failure;

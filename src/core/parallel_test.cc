@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <thread>
 
 #include "core/error.h"
 
@@ -52,6 +53,69 @@ TEST(ParallelFor, RunsEveryTaskOnce) {
   std::vector<std::atomic<int>> hits(500);
   parallel_for(hits.size(), 8, [&](int, size_t t) { ++hits[t]; });
   for (auto& h : hits) EXPECT_EQ(h.load(), 1);
+}
+
+// parallel_for serves calls from threads that stay up (core/worker_pool.h); what a pool can
+// get wrong: a late thread joining the wrong call, a lost wake-up, a call inside a task or
+// on two threads at once, an exception, a forked child (no pool threads in it).
+TEST(ParallelFor, ManyShortCallsRunEveryTaskOnceEachTime) {
+  std::vector<std::atomic<int>> hits(7);
+  for (int call = 0; call < 3000; ++call) {
+    const size_t tasks = 1 + size_t(call) % hits.size();  // changing worker counts
+    parallel_for(tasks, 2 + call % 3, [&](int w, size_t t) {
+      EXPECT_LT(w, 4);
+      ++hits[t];
+    });
+  }
+  int total = 0;
+  for (auto& h : hits) total += h.load();
+  int expected = 0;
+  for (int call = 0; call < 3000; ++call) expected += 1 + call % int(hits.size());
+  EXPECT_EQ(total, expected);
+}
+
+TEST(ParallelFor, CallsInsideTasksAndOnTwoThreadsAtOnceComplete) {
+  std::atomic<int> inner{0};
+  parallel_for(4, 2, [&](int, size_t) { parallel_for(50, 2, [&](int, size_t) { ++inner; }); });
+  EXPECT_EQ(inner.load(), 200);
+  std::atomic<int> ran{0};
+  auto caller = [&] {
+    for (int i = 0; i < 300; ++i) parallel_for(10, 2, [&](int, size_t) { ++ran; });
+  };
+  std::thread a(caller), b(caller);
+  a.join();
+  b.join();
+  EXPECT_EQ(ran.load(), 6000);
+}
+
+TEST(ParallelFor, ATaskThrowingReachesTheCallerAndTheNextCallRuns) {
+  for (int round = 0; round < 20; ++round) {
+    EXPECT_THROW(parallel_for(16, 2, [&](int, size_t t) {
+                   if (t == size_t(round % 16)) throw Error("task failed");
+                 }),
+                 Error);
+    std::atomic<int> ran{0};
+    parallel_for(16, 2, [&](int, size_t) { ++ran; });
+    EXPECT_EQ(ran.load(), 16);
+  }
+}
+
+TEST(ParallelFor, AForkedChildRunsCallsWithoutThePoolsThreads) {
+  std::atomic<int> ran{0};
+  parallel_for(8, 2, [&](int, size_t) { ++ran; });  // the pool's threads are up
+  ASSERT_EQ(ran.load(), 8);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::alarm(20);  // a call waiting for threads that do not exist here would hang
+    std::atomic<int> in_child{0};
+    parallel_for(8, 2, [&](int, size_t) { ++in_child; });
+    std::_Exit(in_child.load() == 8 ? 0 : 1);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "the child died of signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 0);
 }
 
 TEST(ListGrain, LongListsGiveTwoWorkersSeveralChunksEachAndShortOnesStayWhole) {

@@ -26,7 +26,9 @@ class SplatSums {
         kept_.pop_back();
       }
     }
-    if (a.size() < n) a.assign(n, 0);  // a grown array is zeroed whole; a kept one already is
+    // A kept array is zero throughout (the read-out clears what a pass wrote): growing it
+    // zeroes only the new tail, not the 8 bytes a splat of a frame millions of splats long.
+    if (a.size() < n) a.resize(n, 0);
     return a;
   }
   void give_back(std::vector<uint64_t> a) {
