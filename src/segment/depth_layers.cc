@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/parallel.h"
 #include "render/projection.h"
@@ -131,28 +132,42 @@ bool keep_local_layers(int gx, int gy, const std::vector<int32_t>& region, const
   // figure, a range per region. A region's members lie scattered over the view's entries
   // (megabytes at millions of Gaussians), and reading them in place missed the cache at
   // nearly every sample; so did a list apiece, an allocation per region and view.
+  // A counting sort in parallel chunks: each chunk counts its entries per region, takes its
+  // place in every region after the chunks before it, and fills it, so a region's entries
+  // stay ascending, as one pass in order would leave them.
   const size_t regions = size_t(gx) * gy;
+  const size_t n = region.size(), grain = list_grain(n), chunks = (n + grain - 1) / grain;
+  std::vector<std::vector<uint32_t>> chunk_next(chunks);  // per chunk and region: its next slot
+  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+    std::vector<uint32_t> count(regions, 0);
+    for (size_t k = begin; k < end; ++k)
+      if (region[k] >= 0) ++count[size_t(region[k])];
+    chunk_next[begin / grain] = std::move(count);
+  });
   std::vector<uint32_t> first(regions + 1, 0);
-  for (int32_t r : region)
-    if (r >= 0) ++first[size_t(r) + 1];
-  for (size_t r = 0; r < regions; ++r) first[r + 1] += first[r];
+  uint32_t placed_so_far = 0;
+  for (size_t r = 0; r < regions; ++r) {
+    first[r] = placed_so_far;
+    for (std::vector<uint32_t>& next : chunk_next) placed_so_far += std::exchange(next[r], placed_so_far);
+  }
+  first[regions] = placed_so_far;
   const size_t placed = first[regions];
   std::vector<uint32_t> entries(placed);
   std::vector<float> z(placed), e(placed);
   std::vector<double> w(placed);
   std::vector<char> sel_entry(placed);
-  {
-    std::vector<uint32_t> fill(first.begin(), first.end() - 1);
-    for (size_t k = 0; k < region.size(); ++k) {
+  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+    std::vector<uint32_t>& next = chunk_next[begin / grain];
+    for (size_t k = begin; k < end; ++k) {
       if (region[k] < 0) continue;
-      const uint32_t p = fill[size_t(region[k])]++;
+      const uint32_t p = next[size_t(region[k])]++;
       entries[p] = uint32_t(k);
       z[p] = depth[k];
       e[p] = extent[k];
       w[p] = weight[k];
       sel_entry[p] = selected[k];
     }
-  }
+  });
   struct Range { double lo = 1e300, hi = -1e300; bool set() const { return hi >= lo; } };
   std::vector<std::vector<DepthLayer>> layers(regions);
   std::vector<int> layer_index(placed, -1);

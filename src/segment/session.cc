@@ -928,12 +928,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         TimeInto timed{part.agreement};
         // The selection's whole extent in this view is its share of the view's all-pixel
         // votes (the same blending weights): the coverage is only rendered under the mask.
-        double total = 0;
-        if (have_raw) {
-          const ViewVotes& all = all_votes_of_view(k);
-          for (size_t i = 0; i < all.index.size(); ++i)
-            if (current[all.index[i]]) total += double(all.weight[i]);
-        }
+        const double total = have_raw ? double(flagged_weight(all_votes_of_view(k), current, o.threads)) : 0.0;
         // The pixel figures completed by weight: the selection's extent is `total`, its
         // weight under the mask `inside` (both in vote units).
         auto by_weight = [&](Agreement a, double inside) {
@@ -943,10 +938,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         };
         auto measure = [&](const Image& m, const ViewVotes& votes, const Image& cov) {
           if (!have_raw) return agreement(m, cov);
-          double inside = 0;
-          for (size_t i = 0; i < votes.index.size(); ++i)
-            if (current[votes.index[i]]) inside += double(votes.weight[i]);
-          return by_weight(agreement(m, cov), inside);
+          return by_weight(agreement(m, cov), double(flagged_weight(votes, current, o.threads)));
         };
         // The same figures from the selection's coverage rendered over the whole view: the
         // weight under the mask is the coverage summed there (the votes' fixed-point sums

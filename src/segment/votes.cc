@@ -122,6 +122,20 @@ ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const 
   return join_in_order(std::move(parts));
 }
 
+int64_t flagged_weight(const ViewVotes& votes, const std::vector<bool>& flags, int threads) {
+  const size_t n = votes.index.size(), grain = list_grain(n);
+  std::vector<int64_t> sums((n + grain - 1) / grain, 0);
+  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+    int64_t sum = 0;
+    for (size_t i = begin; i < end; ++i)
+      if (flags[votes.index[i]]) sum += votes.weight[i];
+    sums[begin / grain] = sum;
+  });
+  int64_t total = 0;
+  for (int64_t s : sums) total += s;
+  return total;
+}
+
 std::vector<float> VoteAccumulator::ratios() const {
   std::vector<float> r(total_.size(), 0.f);
   for (size_t j = 0; j < total_.size(); ++j)

@@ -122,6 +122,10 @@ class VoteAccumulator {
 ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const Image& mask, const Image& depth,
                         const ViewVotes& positive, const ViewVotes& total, int margin = 12, int threads = 1);
 
+// The summed weight of the votes of the flagged Gaussians (one flag per Gaussian): a
+// selection's share of a view. Whole fixed-point units, so the same in any order.
+int64_t flagged_weight(const ViewVotes& votes, const std::vector<bool>& flags, int threads = 1);
+
 // Bounding tiles of mask > 0.5 pixels, as a tile mask for rasterize().
 std::vector<uint8_t> tiles_under_mask(const Image& mask, int grid_x, int grid_y);
 
