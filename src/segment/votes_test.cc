@@ -30,6 +30,22 @@ Camera axis_camera() {
   return c;
 }
 
+TEST(Votes, FlaggedWeightSumsTheFlaggedGaussiansVotesOnAnyThreadCount) {
+  // A list long enough for several chunks (list_grain), weights near the fixed-point
+  // scale's size: the chunked sums are whole numbers and equal the sum in order.
+  ViewVotes votes;
+  std::vector<bool> flags(900000, false);
+  int64_t expected = 0;
+  for (uint32_t g = 0; g < flags.size(); g += 3) {
+    votes.index.push_back(g);
+    votes.weight.push_back(int64_t(g % 977) << 20);
+    flags[g] = g % 7 < 3;
+    if (flags[g]) expected += votes.weight.back();
+  }
+  for (int threads : {1, 2, 3}) EXPECT_EQ(flagged_weight(votes, flags, threads), expected) << threads;
+  EXPECT_EQ(flagged_weight(ViewVotes{}, flags, 2), 0);
+}
+
 TEST(Votes, HandBuiltScene) {
   // Gaussian 0 on the left half, 1 on the right half, 2 behind 0 (partly hidden).
   GaussianScene g;
