@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/parallel.h"
+
 #include "segment/whole_islands.h"
 
 namespace isegman::segment {
@@ -9,7 +11,8 @@ namespace isegman::segment {
 size_t add_attached_parts(std::vector<bool>& selection, const VoteAccumulator& votes, double min_total,
                           const std::vector<uint32_t>& candidates, const std::vector<uint8_t>& set_aside,
                           const std::vector<uint32_t>& apart, const std::vector<bool>& excluded,
-                          const GaussianScene& scene, const CentreIndex& index, const AttachedPartsOptions& o) {
+                          const GaussianScene& scene, const CentreIndex& index, const AttachedPartsOptions& o,
+                          int threads) {
   if (!o.enabled) return 0;
   const int64_t min_fixed = VoteAccumulator::min_fixed(min_total);
   const auto& P = votes.positive();
@@ -29,7 +32,7 @@ size_t add_attached_parts(std::vector<bool>& selection, const VoteAccumulator& v
     listed.push_back(j);
   }
   if (listed.empty()) return 0;
-  const TouchingGaussians touching_open(scene, index, open, o.link_sigmas);
+  const TouchingGaussians touching_open(scene, index, open, o.link_sigmas, threads);
   // Flood `open` from `queue`, calling take(j) on every Gaussian it reaches.
   auto flood = [&](std::vector<uint32_t> queue, auto&& take) {
     while (!queue.empty()) {
@@ -53,13 +56,15 @@ size_t add_attached_parts(std::vector<bool>& selection, const VoteAccumulator& v
   // Then the selection takes what attaches to it: first what touches it, then what touches that.
   std::vector<uint32_t> seeds;
   {
-    const TouchingGaussians touching_selection(scene, index, selection, o.link_sigmas);
-    for (uint32_t c : listed) {
-      if (!open[c]) continue;
-      bool touches = false;
-      touching_selection.for_each(c, [&](uint32_t) { touches = true; });
-      if (touches) seeds.push_back(c);
-    }
+    const TouchingGaussians touching_selection(scene, index, selection, o.link_sigmas, threads);
+    // Each open Gaussian's search on its own, in parallel; the seeds in the listed order.
+    std::vector<uint8_t> touches(listed.size(), 0);
+    parallel_chunks(listed.size(), 256, threads, [&](int, size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i)
+        if (open[listed[i]]) touching_selection.for_each(listed[i], [&](uint32_t) { touches[i] = 1; });
+    });
+    for (size_t i = 0; i < listed.size(); ++i)
+      if (touches[i]) seeds.push_back(listed[i]);
   }
   size_t added = 0;
   for (uint32_t c : seeds) {

@@ -46,10 +46,12 @@ struct AttachedPartsOptions {
 // (ascending; outside them P = 0). `set_aside`: per Gaussian, the number of views whose
 // depth layers or background gate set it aside (may be empty). `apart`: the Gaussians whole
 // islands dropped (ascending). `excluded`: one flag per Gaussian never to select (may be
-// empty). `index` is built over `scene`. Returns the number added.
+// empty). `index` is built over `scene`. Returns the number added. `threads`: for the
+// searches of what touches the selection (0 = all cores; the same result).
 size_t add_attached_parts(std::vector<bool>& selection, const VoteAccumulator& votes, double min_total,
                           const std::vector<uint32_t>& candidates, const std::vector<uint8_t>& set_aside,
                           const std::vector<uint32_t>& apart, const std::vector<bool>& excluded,
-                          const GaussianScene& scene, const CentreIndex& index, const AttachedPartsOptions& options);
+                          const GaussianScene& scene, const CentreIndex& index, const AttachedPartsOptions& options,
+                          int threads = 1);
 
 }  // namespace isegman::segment

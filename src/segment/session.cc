@@ -1173,7 +1173,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   if (o.whole_islands.enabled) {
     TimeInto timed{part.decide};
     rep.whole_islands = drop_whole_islands(next.selection, acc, scene_, neighbours(), o.tau, min_weight,
-                                           o.centre_rule, o.whole_islands);
+                                           o.centre_rule, o.whole_islands, o.threads);
   }
   const bool any_negative =
       std::any_of(next.clicks.begin(), next.clicks.end(), [](const UserClick& c) { return c.click.label == 0; });
@@ -1185,7 +1185,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     for (size_t j = 0; j < before_islands.size(); ++j)
       if (before_islands[j] && !next.selection[j]) apart.push_back(uint32_t(j));
     rep.attached_parts = add_attached_parts(next.selection, acc, min_weight, live.support(), set_aside, apart,
-                                            excluded_, scene_, neighbours(), o.attached_parts);
+                                            excluded_, scene_, neighbours(), o.attached_parts, o.threads);
   }
   if (o.negative_islands && any_negative) {
     TimeInto timed{part.decide};

@@ -36,9 +36,10 @@ struct IslandOptions {
 // one huge Gaussian does not widen every search.
 class TouchingGaussians {
  public:
-  // `index` is built over `scene`; both and `selection` must outlive this.
+  // `index` is built over `scene`; both and `selection` must outlive this. `threads`: for
+  // the selection's scales (0 = all cores).
   TouchingGaussians(const GaussianScene& scene, const CentreIndex& index, const std::vector<bool>& selection,
-                    double link_sigmas);
+                    double link_sigmas, int threads = 1);
   // f(j) for every selected Gaussian j != g that touches g.
   template <class F>
   void for_each(uint32_t g, F&& f) const {
@@ -64,9 +65,9 @@ class TouchingGaussians {
 // Gaussians joined by chains, each touching the next), unless the set touches a part
 // those do select (such Gaussians joined by chains) of at least min_own_share of the
 // set's size, and at least one Gaussian. `index` is built over `scene`. Returns the
-// number dropped.
+// number dropped. `threads`: for the neighbour searches (0 = all cores; the same result).
 size_t drop_whole_islands(std::vector<bool>& selection, const VoteAccumulator& votes, const GaussianScene& scene,
                           const CentreIndex& index, double tau, double min_total, const CentreRule& centre,
-                          const IslandOptions& options);
+                          const IslandOptions& options, int threads = 1);
 
 }  // namespace isegman::segment
