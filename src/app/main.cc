@@ -1,6 +1,4 @@
 // isegman: interactive segmentation and manipulation of 3D Gaussian Splatting scenes.
-#include <unistd.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -8,6 +6,7 @@
 #include <vector>
 
 #include "app/command.h"
+#include "core/process_settings.h"
 
 namespace isegman::app {
 std::map<std::string, CommandInfo>& command_registry() {
@@ -25,12 +24,7 @@ static void print_help() {
 
 int main(int argc, char** argv) {
   using namespace isegman::app;
-  // libgomp reads OMP_WAIT_POLICY once at start-up; spinning OpenMP workers make libtorch
-  // about 10x slower on shared 2-core machines, so restart once with PASSIVE set.
-  if (!std::getenv("OMP_WAIT_POLICY")) {
-    setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
-    execv("/proc/self/exe", argv);  // only returns on failure: then carry on as we are
-  }
+  isegman::restart_with_process_settings(argv);
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
     if (args.size() >= 2 && command_registry().count(args[1])) {
