@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <map>
 
-#include "core/process_settings.h"
 #include "core/sh.h"
 #include "io/scene_loader.h"
 #include "render/rasterizer.h"
@@ -111,12 +110,4 @@ BENCHMARK(BM_RenderFern)->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchmark::kM
 }  // namespace
 }  // namespace isegman
 
-// The CLI's process settings (core/process_settings.h), so the figures are what a user gets.
-int main(int argc, char** argv) {
-  isegman::restart_with_process_settings(argv);
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+// main(): bench_main.cc

@@ -10,7 +10,6 @@
 #include <cstdint>
 
 #include "core/centre_index.h"
-#include "core/process_settings.h"
 #include "core/scene.h"
 
 namespace isegman {
@@ -76,12 +75,4 @@ BENCHMARK(BM_LegacyFingerprint)->Arg(1000000)->Arg(6000000)->Unit(benchmark::kMi
 }  // namespace
 }  // namespace isegman
 
-// The CLI's process settings (core/process_settings.h), so the figures are what a user gets.
-int main(int argc, char** argv) {
-  isegman::restart_with_process_settings(argv);
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+// main(): bench_main.cc

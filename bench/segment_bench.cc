@@ -31,7 +31,6 @@
 #include <map>
 
 #include "app/demo_scene.h"
-#include "core/process_settings.h"
 #include "io/gaussian_file.h"
 #include "io/ply.h"
 #include "io/scene_loader.h"
@@ -463,12 +462,4 @@ BENCHMARK(BM_VotePass)
 }  // namespace
 }  // namespace isegman
 
-// The CLI's process settings (core/process_settings.h), so the figures are what a user gets.
-int main(int argc, char** argv) {
-  isegman::restart_with_process_settings(argv);
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+// main(): bench_main.cc

@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <numeric>
 
-#include "core/process_settings.h"
 #include "core/selection.h"
 #include "edit/image_editor.h"
 #include "edit/semantic_edit.h"
@@ -86,12 +85,4 @@ BENCHMARK(BM_SemanticEditFern)->Arg(1)->Arg(2)->UseManualTime()->Iterations(1)->
 }  // namespace
 }  // namespace isegman
 
-// The CLI's process settings (core/process_settings.h), so the figures are what a user gets.
-int main(int argc, char** argv) {
-  isegman::restart_with_process_settings(argv);
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+// main(): bench_main.cc
