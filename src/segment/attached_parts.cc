@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "core/parallel.h"
-
 #include "segment/whole_islands.h"
 
 namespace isegman::segment {
