@@ -88,12 +88,16 @@ inline size_t list_grain(size_t n) {
   return std::clamp((even + kMinGrain - 1) / kMinGrain * kMinGrain, kMinGrain, kListGrain);
 }
 
-// Splits [0, n) into chunks of `grain` and runs fn(worker, begin, end) on each (one chunk:
-// on the calling thread).
+// The number of chunks of `grain` entries that [0, n) splits into.
+inline size_t chunk_count(size_t n, size_t grain) { return (n + grain - 1) / grain; }
+
+// Splits [0, n) into chunks of `grain` and runs fn(chunk, begin, end) on each, chunk in
+// [0, chunk_count(n, grain)): a pass that keeps a result per chunk stores it at `chunk` and
+// merges them in chunk order (one chunk: on the calling thread).
 inline void parallel_chunks(size_t n, size_t grain, int threads,
-                            const std::function<void(int, size_t, size_t)>& fn) {
-  const size_t chunks = (n + grain - 1) / grain;
-  parallel_for(chunks, threads, [&](int w, size_t c) { fn(w, c * grain, std::min(n, (c + 1) * grain)); });
+                            const std::function<void(size_t, size_t, size_t)>& fn) {
+  parallel_for(chunk_count(n, grain), threads,
+               [&](int, size_t c) { fn(c, c * grain, std::min(n, (c + 1) * grain)); });
 }
 
 // Number of workers parallel_for will actually use for `tasks` tasks.

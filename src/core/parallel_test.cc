@@ -118,6 +118,23 @@ TEST(ParallelFor, AForkedChildRunsCallsWithoutThePoolsThreads) {
   EXPECT_EQ(WEXITSTATUS(status), 0);
 }
 
+TEST(ParallelChunks, EachChunkGetsItsIndexAndTheRangesCoverTheListOnce) {
+  const size_t n = 100001, grain = 8192;
+  ASSERT_EQ(chunk_count(n, grain), size_t(13));
+  EXPECT_EQ(chunk_count(0, grain), size_t(0));
+  std::vector<std::pair<size_t, size_t>> ranges(chunk_count(n, grain));
+  std::vector<std::atomic<int>> covered(n);
+  parallel_chunks(n, grain, 2, [&](size_t chunk, size_t begin, size_t end) {
+    ranges[chunk] = {begin, end};
+    for (size_t i = begin; i < end; ++i) ++covered[i];
+  });
+  for (size_t c = 0; c < ranges.size(); ++c) {
+    EXPECT_EQ(ranges[c].first, c * grain);
+    EXPECT_EQ(ranges[c].second, std::min(n, (c + 1) * grain));
+  }
+  for (size_t i = 0; i < n; ++i) ASSERT_EQ(covered[i].load(), 1) << i;
+}
+
 TEST(ListGrain, LongListsGiveTwoWorkersSeveralChunksEachAndShortOnesStayWhole) {
   // A short list is one chunk: starting a worker would cost more than the pass.
   EXPECT_EQ(list_grain(1), list_grain(8192));

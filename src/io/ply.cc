@@ -356,7 +356,7 @@ GaussianScene parse_ply(const uint8_t* data, size_t size, const std::string& src
     };
     if (fixed_stride) {
       const uint8_t* base = p;
-      parallel_chunks(n, 65536, 0, [&](int, size_t a, size_t e) {
+      parallel_chunks(n, 65536, 0, [&](size_t, size_t a, size_t e) {
         for (size_t i = a; i < e; ++i) store_row(i, base + i * stride);
         if (parsed) parsed(size_t(base - data) + a * stride, (e - a) * stride);
       });

@@ -398,7 +398,7 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
     size_t k = 0;
     for (const auto& v : chunk_out)
       for (const Projected& sp : v) flat[k++] = &sp;
-    parallel_chunks(visible, 65536, s.threads, [&](int, size_t a, size_t e) {
+    parallel_chunks(visible, 65536, s.threads, [&](size_t, size_t a, size_t e) {
       for (size_t j = a; j < e; ++j) {
         const Projected& p = *flat[order[j]];
         splats[j] = p.splat;

@@ -64,17 +64,17 @@ GaussianWeights join_in_order(std::vector<GaussianWeights> parts) {
 SplitWeights split_in_order(const GaussianWeights& list, const std::vector<uint8_t>& flagged, int threads) {
   const size_t n = list.index.size();
   const size_t grain = list_grain(n);
-  const size_t chunks = (n + grain - 1) / grain;
+  const size_t chunks = chunk_count(n, grain);
   std::vector<GaussianWeights> flagged_parts(chunks), rest_parts(chunks);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
     GaussianWeights in, out;  // locals, moved in at the end: the chunks' lists share cache lines
     for (size_t k = begin; k < end; ++k) {
       GaussianWeights& to = flagged[k] ? in : out;
       to.index.push_back(list.index[k]);
       to.weight.push_back(list.weight[k]);
     }
-    flagged_parts[begin / grain] = std::move(in);
-    rest_parts[begin / grain] = std::move(out);
+    flagged_parts[chunk] = std::move(in);
+    rest_parts[chunk] = std::move(out);
   });
   return {join_in_order(std::move(flagged_parts)), join_in_order(std::move(rest_parts))};
 }
@@ -453,8 +453,8 @@ std::vector<uint8_t> tiles_reached(const PreparedFrame& frame, const std::vector
   const int W = frame.camera.width, H = frame.camera.height;
   // Each worker flags its own copy (no atomics), or-ed together at the end.
   const size_t grain = list_grain(n);
-  std::vector<std::vector<uint8_t>> flags((n + grain - 1) / grain);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  std::vector<std::vector<uint8_t>> flags(chunk_count(n, grain));
+  parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
     std::vector<uint8_t> f(gx * size_t(frame.grid_y), 0);  // a local, moved in at the end
     TileBox box;
     for (size_t k = begin; k < end; ++k) {
@@ -463,7 +463,7 @@ std::vector<uint8_t> tiles_reached(const PreparedFrame& frame, const std::vector
       for (int ty = box.y0; ty <= box.y1; ++ty)
         for (int tx = box.x0; tx <= box.x1; ++tx) f[size_t(ty) * gx + size_t(tx)] = 1;
     }
-    flags[begin / grain] = std::move(f);
+    flags[chunk] = std::move(f);
   });
   std::vector<uint8_t> out(gx * size_t(frame.grid_y), 0);
   for (const std::vector<uint8_t>& f : flags)

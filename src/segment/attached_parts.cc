@@ -58,7 +58,7 @@ size_t add_attached_parts(std::vector<bool>& selection, const VoteAccumulator& v
     const TouchingGaussians touching_selection(scene, index, selection, o.link_sigmas, threads);
     // Each open Gaussian's search on its own, in parallel; the seeds in the listed order.
     std::vector<uint8_t> touches(listed.size(), 0);
-    parallel_chunks(listed.size(), 256, threads, [&](int, size_t begin, size_t end) {
+    parallel_chunks(listed.size(), 256, threads, [&](size_t, size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i)
         if (open[listed[i]]) touching_selection.for_each(listed[i], [&](uint32_t) { touches[i] = 1; });
     });

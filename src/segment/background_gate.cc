@@ -238,7 +238,7 @@ double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVo
   const size_t grain = list_grain(n);
   if (n == 0) return 0.0;
   std::vector<std::pair<double, double>> dw(n);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](size_t, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       const uint32_t g = votes.index[k];
       dw[k] = {camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]}).z,
@@ -253,16 +253,15 @@ double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVo
   // then ordered, by selection.
   // Each of the three passes runs in parallel chunks, merged in chunk order (whole-number
   // sums and extrema: the same in any order).
-  const size_t chunks = (n + grain - 1) / grain;
+  const size_t chunks = chunk_count(n, grain);
   std::vector<double> chunk_total(chunks, 0.0), chunk_lo(chunks, dw[0].first), chunk_hi(chunks, dw[0].first);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](size_t c, size_t begin, size_t end) {
     double t = 0, lo_d = dw[begin].first, hi_d = dw[begin].first;
     for (size_t k = begin; k < end; ++k) {
       t += dw[k].second;
       lo_d = std::min(lo_d, dw[k].first);
       hi_d = std::max(hi_d, dw[k].first);
     }
-    const size_t c = begin / grain;
     chunk_total[c] = t;
     chunk_lo[c] = lo_d;
     chunk_hi[c] = hi_d;
@@ -278,10 +277,10 @@ double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVo
   const double per_depth = hi_depth > lo_depth ? kBins / (hi_depth - lo_depth) : 0.0;
   auto bin_of = [&](double d) { return std::min(kBins - 1, int((d - lo_depth) * per_depth)); };
   std::vector<std::vector<double>> chunk_hist(chunks);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
     std::vector<double> h(kBins, 0.0);  // a local, moved in at the end
     for (size_t k = begin; k < end; ++k) h[size_t(bin_of(dw[k].first))] += dw[k].second;
-    chunk_hist[begin / grain] = std::move(h);
+    chunk_hist[chunk] = std::move(h);
   });
   std::vector<double> hist(kBins, 0.0);
   for (const std::vector<double>& h : chunk_hist)
@@ -290,11 +289,11 @@ double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVo
   double before = 0;  // the weight of the entries ordered before the bin's
   while (bin < kBins - 1 && before + hist[size_t(bin)] < target) before += hist[size_t(bin++)];
   std::vector<std::vector<std::pair<double, double>>> chunk_in_bin(chunks);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
     std::vector<std::pair<double, double>> found;  // a local, moved in at the end
     for (size_t k = begin; k < end; ++k)
       if (bin_of(dw[k].first) == bin) found.push_back(dw[k]);
-    chunk_in_bin[begin / grain] = std::move(found);
+    chunk_in_bin[chunk] = std::move(found);
   });
   std::vector<std::pair<double, double>> in_bin;
   for (const auto& f : chunk_in_bin) in_bin.insert(in_bin.end(), f.begin(), f.end());
@@ -505,9 +504,9 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
   const size_t grain = list_grain(n);
   // (offset, weight) of the Gaussians centred on the ring, per chunk, then sorted: the
   // order they are found in does not matter.
-  const size_t chunks = (n + grain - 1) / grain;
+  const size_t chunks = chunk_count(n, grain);
   std::vector<std::vector<std::pair<double, double>>> found(chunks);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
     std::vector<std::pair<double, double>> out;  // moved in at the end: the chunks' vectors share cache lines
     for (size_t s = begin; s < end; ++s) {
       const size_t k = indexed ? filed[s] : s * stride;
@@ -522,7 +521,7 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
       if (!(alpha.data[p] > 0.5f) || !(z > 0) || z < near_limit) continue;
       out.push_back({z / cz - 1, double(total.weight[k])});  // (1/cz) / (1/z) - 1
     }
-    found[begin / grain] = std::move(out);
+    found[chunk] = std::move(out);
   });
   std::vector<std::pair<double, double>> all;
   for (auto& f : found) all.insert(all.end(), f.begin(), f.end());
@@ -571,7 +570,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   std::vector<int32_t> pixel(2 * n, -1);  // where the centre projects
   std::vector<double> seed_distance(n, std::numeric_limits<double>::infinity());  // distance_to_seeds
   std::vector<uint8_t> at_seed(n, 0);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](size_t, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       double u, v, cz;
       if (!camera.project(scene.position(positive.index[k]), u, v, &cz)) continue;
@@ -621,7 +620,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   // tolerance narrowed to a target just in front of them.
   const double far = o.far_behind * surroundings_tolerance;
   std::vector<uint8_t> behind_surface(n, 0);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](size_t, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k)
       if (!std::isnan(offset[k]) && offset[k] <= tolerance)  // an estimate there: the centre projects in the frame
         behind_surface[k] = !crosses_surface(scene, camera, background, positive.index[k], pixel[2 * k],
@@ -639,8 +638,8 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
       return *this;
     }
   };
-  std::vector<Sums> chunk_sums((n + grain - 1) / grain);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  std::vector<Sums> chunk_sums(chunk_count(n, grain));
+  parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
     Sums sums;  // in registers, stored at the end: the chunks' sums share cache lines
     for (size_t k = begin; k < end; ++k) {
       const bool behind = behind_surface[k];
@@ -659,7 +658,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
         if (behind) sums.selected_moved += wk;
       }
     }
-    chunk_sums[begin / grain] = sums;
+    chunk_sums[chunk] = sums;
   });
   Sums all;
   for (const Sums& c : chunk_sums) all += c;

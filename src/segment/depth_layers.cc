@@ -28,12 +28,12 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
   // numbers of fixed-point units, so their sums are exact in any order, and so is the result.
   const size_t n = depth.size();
   const size_t grain = list_grain(n);
-  const size_t chunks = std::max<size_t>(1, (n + grain - 1) / grain);
+  const size_t chunks = std::max<size_t>(1, chunk_count(n, grain));
   struct Span {
     double total = 0, lo = 1e300, hi = 0;
   };
   std::vector<Span> spans(chunks);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
     Span sp;  // in registers: the chunks' spans share cache lines
     for (size_t i = begin; i < end; ++i) {
       if (!counts(depth[i], weight[i])) continue;
@@ -41,7 +41,7 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
       sp.lo = std::min(sp.lo, double(depth[i]));
       sp.hi = std::max(sp.hi, double(depth[i]));
     }
-    spans[begin / grain] = sp;
+    spans[chunk] = sp;
   });
   double total = 0, lo = 1e300, hi = 0;
   for (const Span& sp : spans) {
@@ -59,9 +59,9 @@ std::vector<DepthLayer> depth_layers(const std::vector<float>& depth, const std:
   const bool extents = extent && o.extent_sigmas > 0;
   std::vector<std::vector<double>> hists(chunks);
   std::vector<std::vector<char>> covers(chunks);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
-    std::vector<double>& h = hists[begin / grain];
-    std::vector<char>& c = covers[begin / grain];
+  parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
+    std::vector<double>& h = hists[chunk];
+    std::vector<char>& c = covers[chunk];
     h.assign(size_t(bins), 0.0);
     c.assign(size_t(bins), 0);
     for (size_t i = begin; i < end; ++i) {
@@ -136,13 +136,13 @@ bool keep_local_layers(int gx, int gy, const std::vector<int32_t>& region, const
   // place in every region after the chunks before it, and fills it, so a region's entries
   // stay ascending, as one pass in order would leave them.
   const size_t regions = size_t(gx) * gy;
-  const size_t n = region.size(), grain = list_grain(n), chunks = (n + grain - 1) / grain;
+  const size_t n = region.size(), grain = list_grain(n), chunks = chunk_count(n, grain);
   std::vector<std::vector<uint32_t>> chunk_next(chunks);  // per chunk and region: its next slot
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
     std::vector<uint32_t> count(regions, 0);
     for (size_t k = begin; k < end; ++k)
       if (region[k] >= 0) ++count[size_t(region[k])];
-    chunk_next[begin / grain] = std::move(count);
+    chunk_next[chunk] = std::move(count);
   });
   std::vector<uint32_t> first(regions + 1, 0);
   uint32_t placed_so_far = 0;
@@ -156,8 +156,8 @@ bool keep_local_layers(int gx, int gy, const std::vector<int32_t>& region, const
   std::vector<float> z(placed), e(placed);
   std::vector<double> w(placed);
   std::vector<char> sel_entry(placed);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
-    std::vector<uint32_t>& next = chunk_next[begin / grain];
+  parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
+    std::vector<uint32_t>& next = chunk_next[chunk];
     for (size_t k = begin; k < end; ++k) {
       if (region[k] < 0) continue;
       const uint32_t p = next[size_t(region[k])]++;
@@ -257,7 +257,7 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
   std::vector<char> selected(n, 0);
   std::vector<int32_t> region(n, -1);
   // Per entry, independent: chunks in parallel.
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  parallel_chunks(n, grain, threads, [&](size_t, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
       const uint32_t g = positive.index[k];
       const Vec3 centre{scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]};
@@ -275,10 +275,10 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
   // depth_layers' own; elsewhere the extent stays 0, unread.
   if (o.extent_sigmas > 0) {
     const bool local = selection && o.region > 0;
-    const size_t regions = local ? size_t(gx) * gy : 0, chunks = (n + grain - 1) / grain;
+    const size_t regions = local ? size_t(gx) * gy : 0, chunks = chunk_count(n, grain);
     std::vector<double> chunk_total(chunks, 0.0);
     std::vector<std::vector<double>> chunk_regions(chunks);
-    parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+    parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
       double t = 0;
       std::vector<double> r(regions, 0.0);  // a local, moved in at the end
       for (size_t k = begin; k < end; ++k) {
@@ -286,8 +286,8 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
         t += weight[k];
         if (local && region[k] >= 0) r[size_t(region[k])] += weight[k];
       }
-      chunk_total[begin / grain] = t;
-      chunk_regions[begin / grain] = std::move(r);
+      chunk_total[chunk] = t;
+      chunk_regions[chunk] = std::move(r);
     });
     double total = 0;  // sums of whole numbers: the same in any order
     std::vector<double> region_total(regions, 0.0);
@@ -295,7 +295,7 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
       total += chunk_total[c];
       for (size_t r = 0; r < regions; ++r) region_total[r] += chunk_regions[c][r];
     }
-    parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+    parallel_chunks(n, grain, threads, [&](size_t, size_t begin, size_t end) {
       for (size_t k = begin; k < end; ++k) {
         const bool read = reads_extent(depth[k], weight[k], total, o) ||
                           (local && region[k] >= 0 && reads_extent(depth[k], weight[k], region_total[size_t(region[k])], o));

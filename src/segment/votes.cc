@@ -45,7 +45,7 @@ namespace {
 void scatter_add(ZeroedArray<int64_t>& into, const ViewVotes& v, int64_t sign, int threads) {
   const size_t n = v.index.size();
   const size_t grain = list_grain(n);
-  parallel_chunks(n, grain, threads, [&](int, size_t a, size_t e) {
+  parallel_chunks(n, grain, threads, [&](size_t, size_t a, size_t e) {
     for (size_t k = a; k < e; ++k) into[v.index[k]] += sign * v.weight[k];
   });
 }
@@ -87,8 +87,8 @@ ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const 
   // lists are what one pass would give.
   const size_t n = positive.index.size();
   const size_t grain = std::max(list_grain(n), (n + 3) / 4);
-  std::vector<ViewVotes> parts((n + grain - 1) / grain);
-  auto run = [&](int, size_t begin, size_t end) {
+  std::vector<ViewVotes> parts(chunk_count(n, grain));
+  auto run = [&](size_t chunk, size_t begin, size_t end) {
     ViewVotes out;  // moved in at the end: the chunks' lists share cache lines
     size_t t = size_t(std::lower_bound(total.index.begin(), total.index.end(), positive.index[begin]) - total.index.begin());
     for (size_t k = begin; k < end; ++k) {
@@ -116,7 +116,7 @@ ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const 
       out.index.push_back(g);
       out.weight.push_back(total.weight[t]);
     }
-    parts[begin / grain] = std::move(out);
+    parts[chunk] = std::move(out);
   };
   parallel_chunks(n, grain, threads, run);
   return join_in_order(std::move(parts));
@@ -124,12 +124,12 @@ ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const 
 
 int64_t flagged_weight(const ViewVotes& votes, const std::vector<bool>& flags, int threads) {
   const size_t n = votes.index.size(), grain = list_grain(n);
-  std::vector<int64_t> sums((n + grain - 1) / grain, 0);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  std::vector<int64_t> sums(chunk_count(n, grain), 0);
+  parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
     int64_t sum = 0;
     for (size_t i = begin; i < end; ++i)
       if (flags[votes.index[i]]) sum += votes.weight[i];
-    sums[begin / grain] = sum;
+    sums[chunk] = sum;
   });
   int64_t total = 0;
   for (int64_t s : sums) total += s;

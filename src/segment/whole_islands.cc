@@ -23,12 +23,12 @@ TouchingGaussians::TouchingGaussians(const GaussianScene& scene, const CentreInd
   // The selected Gaussians' scales, gathered in chunks (a scene of millions, a selection of
   // about a million); the percentile is one value whatever their order.
   const size_t n = selection.size(), grain = list_grain(n);
-  std::vector<std::vector<float>> parts((n + grain - 1) / grain);
-  parallel_chunks(n, grain, threads, [&](int, size_t begin, size_t end) {
+  std::vector<std::vector<float>> parts(chunk_count(n, grain));
+  parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
     std::vector<float> part;
     for (size_t j = begin; j < end; ++j)
       if (selection[j]) part.push_back(scene.largest_scale(j));
-    parts[begin / grain] = std::move(part);
+    parts[chunk] = std::move(part);
   });
   std::vector<float> scales;
   for (const std::vector<float>& part : parts) scales.insert(scales.end(), part.begin(), part.end());
@@ -72,7 +72,7 @@ size_t drop_whole_islands(std::vector<bool>& selection, const VoteAccumulator& v
   for (size_t first = 0; first < dependent.size(); first += kBlock) {
     const size_t count = std::min(kBlock, dependent.size() - first);
     touches.assign(count, {});
-    parallel_chunks(count, 256, threads, [&](int, size_t begin, size_t end) {
+    parallel_chunks(count, 256, threads, [&](size_t, size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) touching.for_each(dependent[first + i], [&](uint32_t j) { touches[i].push_back(j); });
     });
     for (size_t i = 0; i < count; ++i) {
