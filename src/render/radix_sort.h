@@ -7,6 +7,9 @@
 
 namespace isegman {
 
-void radix_sort_pairs(std::vector<uint32_t>& keys, std::vector<uint32_t>& payload);
+// Digits of up to 12 bits, as few passes as the largest key needs (Gaussian indices below
+// 2^24: two; float depth bits: three). Long lists are counted and scattered in slices on
+// `threads` workers (0 = all cores); the order is the same on any thread count.
+void radix_sort_pairs(std::vector<uint32_t>& keys, std::vector<uint32_t>& payload, int threads = 1);
 
 }  // namespace isegman

@@ -383,7 +383,7 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
     size_t k = 0;
     for (const auto& v : chunk_out)
       for (const Projected& p : v) std::memcpy(&depth_keys[k++], &p.depth, 4);
-    radix_sort_pairs(depth_keys, order);
+    radix_sort_pairs(depth_keys, order, s.threads);
   }
   std::vector<Splat>& splats = d.splats;
   splats.resize(visible);
