@@ -77,8 +77,9 @@ inline int lanes_set(v8i mask) {
   return n;
 }
 
-// Projects Gaussian i; false when it cannot contribute to any pixel.
-bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera& cam, const RenderSettings& s,
+// Projects Gaussian i; false when it cannot contribute to any pixel. One compiled body
+// (never inlined), so binned_tiles finds the very tile rect prepare_frame binned with.
+__attribute__((noinline)) bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera& cam, const RenderSettings& s,
                     int degree, int grid_x, int grid_y, Projected& proj) {
   Splat& out = proj.splat;
   const float opacity = 1.f / (1.f + std::exp(-scene.opacity[i]));
@@ -459,10 +460,31 @@ PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, co
   stats.tile_pairs = tile_list.size();
   stats.ms_sort = ms_since(t0);
 
+  d.near_plane = s.near_plane;
+  d.blur = s.blur;
   frame.grid_x = grid_x;
   frame.grid_y = grid_y;
   PreparedFrameAccess::adopt(frame, std::move(data));
   return frame;
+}
+
+std::vector<TileBox> binned_tiles(const GaussianScene& scene, const PreparedFrame& frame,
+                                  const std::vector<uint32_t>& gaussians) {
+  if (scene.size() != frame.gaussians) throw Error("binned_tiles: the frame was prepared from another scene");
+  const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
+  RenderSettings s;
+  s.near_plane = d.near_plane;
+  s.blur = d.blur;
+  s.color = false;  // the rect does not depend on colour
+  const ProjectionCamera cam(frame.camera);
+  std::vector<TileBox> out(gaussians.size());
+  Projected p;
+  for (size_t k = 0; k < gaussians.size(); ++k) {
+    if (gaussians[k] >= scene.size()) throw Error("binned_tiles: Gaussian index out of range");
+    if (preprocess_one(scene, gaussians[k], cam, s, 0, frame.grid_x, frame.grid_y, p))
+      out[k] = {p.tx0, p.ty0, p.tx1 - 1, p.ty1 - 1};
+  }
+  return out;
 }
 
 RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, const TilePass& pass) {

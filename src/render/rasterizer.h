@@ -87,6 +87,15 @@ class PreparedFrame {
 
 // Projects, sorts and bins (uses settings.near_plane, blur, sh_degree, color, threads).
 PreparedFrame prepare_frame(const GaussianScene& scene, const Camera& camera, const RenderSettings& settings = {});
+// Tiles [x0, x1] x [y0, y1], inclusive (empty when x1 < x0).
+struct TileBox {
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+};
+// The tiles prepare_frame binned these Gaussians' splats to in `frame` (the frame's tile
+// lists name a Gaussian only there; compacted or not), by the same projection: one box per
+// Gaussian, empty where the frame holds no splat of it (culled, or outside the view).
+std::vector<TileBox> binned_tiles(const GaussianScene& scene, const PreparedFrame& frame,
+                                  const std::vector<uint32_t>& gaussians);
 // Blends a prepared frame. `tile_mask` (optional, grid_x * grid_y flags) limits the work
 // to the flagged tiles; other tiles come out empty (background, alpha 0). A frame prepared
 // with settings.color off renders black; one compacted for value and vote passes only

@@ -41,8 +41,9 @@ inline float decode_half_width(uint16_t h) { return h == kWholeImage ? 1e9f : fl
 constexpr int kLanes = 8;
 
 struct PreparedFrame::Data {
-  // Visible Gaussians in depth order; after compact_frame in ascending Gaussian index (the
-  // tile lists keep the depth order), so per-splat sums read out in the order votes keep.
+  // Visible Gaussians in depth order; after compact_frame in the order the tiles first list
+  // them (tile by tile, front to back; the tile lists keep the depth order), so a tile's
+  // splats lie close together and a pass blending it reads them nearly in order.
   std::vector<Splat> splats;
   std::vector<float> rgb;             // 3 per splat; empty: the frame renders black
   std::vector<float> depth;           // per splat; empty after compact_frame without shading
@@ -57,6 +58,8 @@ struct PreparedFrame::Data {
   std::vector<float> alpha_all, value_all;
   bool compact = false;
   float alpha_max = 0;
+  // What prepare_frame projected with (binned_tiles projects the same way).
+  float near_plane = 0, blur = 0;
 };
 
 struct PreparedFrameAccess {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <mutex>
+#include <numeric>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -44,6 +45,17 @@ class SplatSums {
 SplatSums& splat_sums() {
   static SplatSums pool;
   return pool;
+}
+
+// A list whose Gaussians are unique, put in ascending Gaussian index.
+void sort_by_gaussian(GaussianWeights& list, int threads) {
+  std::vector<uint32_t> keys = list.index, position(keys.size());
+  std::iota(position.begin(), position.end(), 0u);
+  radix_sort_pairs(keys, position, threads);
+  std::vector<int64_t> weight(keys.size());
+  for (size_t k = 0; k < keys.size(); ++k) weight[k] = list.weight[position[k]];
+  list.index = std::move(keys);
+  list.weight = std::move(weight);
 }
 }  // namespace
 
@@ -105,41 +117,38 @@ RenderOutput compact_frame(PreparedFrame& frame, const RenderSettings& s, bool k
   d.value_all = std::move(out.value.data);
   out.value = Image();
 
-  // Keep the blended entries, and the splats they refer to (still in depth order).
+  // Keep the blended entries, and the splats they refer to in the order the tiles first
+  // list them: tile by tile, front to back. A tile's splats then lie close together, and
+  // the passes that blend it read them nearly in order instead of at random across a
+  // frame of millions (a mask's sums over a 6M-Gaussian view ~16 -> ~12 ms, BM_VotePass).
   const size_t tiles = d.tile_start.size() - 1;
-  std::vector<uint8_t> used(d.splats.size(), 0);
+  constexpr uint32_t kDropped = UINT32_MAX;
+  std::vector<uint32_t> remap(d.splats.size(), kDropped), order;  // order: old positions, new order
   std::vector<uint32_t> start(tiles + 1, 0);
   size_t kept = 0;
   for (size_t t = 0; t < tiles; ++t) {
     for (size_t e = d.tile_start[t]; e < d.tile_start[t + 1]; ++e)
       if (blended[e]) {
         ++kept;
-        used[d.tile_list[e]] = 1;
+        uint32_t& to = remap[d.tile_list[e]];
+        if (to == kDropped) {
+          to = uint32_t(order.size());
+          order.push_back(d.tile_list[e]);
+        }
       }
     start[t + 1] = uint32_t(kept);
   }
-  // The kept splats in ascending Gaussian index (each Gaussian is one splat): a sums pass
-  // then accumulates per splat and reads the sums out in that order, without sorting.
-  std::vector<uint32_t> by_index, order;
-  for (size_t i = 0; i < used.size(); ++i)
-    if (used[i]) {
-      by_index.push_back(d.splats[i].index);
-      order.push_back(uint32_t(i));
-    }
-  radix_sort_pairs(by_index, order);
-  std::vector<uint32_t>().swap(by_index);
   const size_t live = order.size();
-  std::vector<uint32_t> remap(d.splats.size(), 0);
   std::vector<Splat> splats(live);
   std::vector<float> rgb(keep_shading && !d.rgb.empty() ? 3 * live : 0), depth(keep_shading ? live : 0);
   for (size_t j = 0; j < live; ++j) {
     const size_t i = order[j];
-    remap[i] = uint32_t(j);
     splats[j] = d.splats[i];
     if (!rgb.empty())
       for (int c = 0; c < 3; ++c) rgb[3 * j + c] = d.rgb[3 * i + c];
     if (keep_shading) depth[j] = d.depth[i];
   }
+  std::vector<uint32_t>().swap(order);
   std::vector<uint32_t> list(kept), weight(kept);
   for (size_t e = 0, k = 0; e < entries; ++e)
     if (blended[e]) {
@@ -242,8 +251,8 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
   const int slots = resolve_threads(settings.threads);
   // Each tile gives a (Gaussian, sum) pair per entry. Few pairs are sorted by Gaussian and
   // summed; many (a large mask over a dense frame) are summed per splat instead, one array
-  // per worker, and read out in splat order, which in a compacted frame is ascending
-  // Gaussian index: the same integers in the same order, without the sort.
+  // per worker, read out in splat order and then sorted by Gaussian: one pair a splat to
+  // sort instead of one an entry, and the same integers.
   const size_t live = d.splats.size();
   size_t entries = 0;
   for (size_t t = 0; t < tiles; ++t)
@@ -341,7 +350,9 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     });
     for (std::vector<uint64_t>& from : per_splat)
       if (!from.empty()) splat_sums().give_back(std::move(from));
-    return join_in_order(std::move(parts));
+    GaussianWeights out = join_in_order(std::move(parts));
+    sort_by_gaussian(out, slots);
+    return out;
   }
   // Sum per Gaussian: sort the (Gaussian, sum) pairs by Gaussian (integer sums, so the
   // order they were found in does not matter).
@@ -357,7 +368,7 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     std::vector<uint32_t>().swap(sums[size_t(w)]);
   }
   for (size_t i = 0; i < pairs; ++i) position[i] = uint32_t(i);
-  radix_sort_pairs(all_keys, position);
+  radix_sort_pairs(all_keys, position, slots);
   GaussianWeights out;
   for (size_t i = 0; i < pairs;) {
     const uint32_t g = all_keys[i];
@@ -427,28 +438,9 @@ bool tile_box_of(const Splat& s, int W, int H, TileBox& box) {
 }
 }  // namespace
 
-bool splat_tile_box(const PreparedFrame& frame, uint32_t gaussian, TileBox& box, size_t& cursor) {
+std::vector<uint8_t> tiles_reached(const PreparedFrame& frame, const std::vector<bool>& flagged, int threads) {
   const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
-  if (!d.compact) return false;
-  const std::vector<Splat>& sp = d.splats;
-  const size_t n = sp.size();
-  if (cursor > n || (cursor < n && sp[cursor].index > gaussian)) cursor = 0;  // not ascending: from the start
-  // Galloping: doubling steps from the cursor, then a binary search inside the last step.
-  size_t lo = cursor, step = 1;
-  while (lo + step < n && sp[lo + step].index < gaussian) {
-    lo += step;
-    step *= 2;
-  }
-  auto it = std::lower_bound(sp.begin() + std::ptrdiff_t(lo), sp.begin() + std::ptrdiff_t(std::min(n, lo + step + 1)),
-                             gaussian, [](const Splat& s, uint32_t g) { return s.index < g; });
-  cursor = size_t(it - sp.begin());
-  if (it == sp.end() || it->index != gaussian) return false;
-  return tile_box_of(*it, frame.camera.width, frame.camera.height, box);
-}
-
-std::vector<uint8_t> tiles_reached(const PreparedFrame& frame, const std::vector<float>& values, int threads) {
-  const PreparedFrame::Data& d = PreparedFrameAccess::data(frame);
-  if (values.size() != frame.gaussians) throw Error("tiles_reached: values do not match the scene");
+  if (flagged.size() != frame.gaussians) throw Error("tiles_reached: the Gaussian flags do not match the scene");
   const size_t gx = size_t(frame.grid_x), n = d.splats.size();
   const int W = frame.camera.width, H = frame.camera.height;
   // Each worker flags its own copy (no atomics), or-ed together at the end.
@@ -459,7 +451,7 @@ std::vector<uint8_t> tiles_reached(const PreparedFrame& frame, const std::vector
     TileBox box;
     for (size_t k = begin; k < end; ++k) {
       const Splat& s = d.splats[k];
-      if (!(values[s.index] > 0) || !tile_box_of(s, W, H, box)) continue;
+      if (!flagged[s.index] || !tile_box_of(s, W, H, box)) continue;
       for (int ty = box.y0; ty <= box.y1; ++ty)
         for (int tx = box.x0; tx <= box.x1; ++tx) f[size_t(ty) * gx + size_t(tx)] = 1;
     }

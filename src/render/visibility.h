@@ -70,20 +70,10 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
 std::vector<uint8_t> tiles_listing(const PreparedFrame& frame, const std::vector<uint8_t>& tiles,
                                    const std::vector<bool>& wanted, int threads = 0,
                                    std::vector<uint64_t>* unwanted_listed = nullptr);
-// The tiles a Gaussian's splat reaches in a compacted frame (the box outside which its
-// alpha stays below 1/255, clipped to the image), inclusive. False when the frame holds no
-// splat of it (outside the view, culled, or dropped by the compaction) or the frame is not
-// compacted (its splats are then not in Gaussian order). `cursor`: where the search
-// starts, moved to where it ended, so ascending lookups each start from the last one.
-struct TileBox {
-  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
-};
-bool splat_tile_box(const PreparedFrame& frame, uint32_t gaussian, TileBox& box, size_t& cursor);
-
-// The tiles the splats of the Gaussians with values > 0 reach (one value per Gaussian of
-// the scene; flags over the frame's tiles): the only tiles where their blend is not 0. One
-// pass over the frame's splats, which hold each one's pixel box already (a compacted
-// frame's in Gaussian order, so the values are read in order).
-std::vector<uint8_t> tiles_reached(const PreparedFrame& frame, const std::vector<float>& values, int threads = 0);
+// The tiles the splats of the flagged Gaussians reach (one flag per Gaussian of the scene;
+// flags over the frame's tiles): the only tiles where a blend of values 0 elsewhere is not
+// 0. One pass over the frame's splats, which hold each one's pixel box already; flags in
+// bits, because a compacted frame's splats come in tile order, not by Gaussian.
+std::vector<uint8_t> tiles_reached(const PreparedFrame& frame, const std::vector<bool>& flagged, int threads = 0);
 
 }  // namespace isegman

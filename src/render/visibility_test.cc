@@ -263,6 +263,54 @@ TEST(Visibility, TilesListingFindsTheWantedAndListsTheRestsGaussians) {
                Error);
 }
 
+TEST(Visibility, BinnedTilesAreTheTilesAFrameListsEachGaussianIn) {
+  // A frame as prepared bins each splat into every tile of its rect, so the tiles whose lists
+  // name a Gaussian are its binned_tiles box exactly; a compacted frame names it in some of
+  // them (its blended entries), never outside. Gaussians the frame holds no splat of (behind
+  // the camera here) come out empty. Near plane and blur other than the defaults, kept by
+  // the frame.
+  GaussianScene g = dense_cloud(8000, 3);
+  const Camera cam = Camera::look_at({0.3, -3.0, 0.8}, {0, 0, 0}, {0, 0, 1}, 130, 90, 60);
+  for (size_t i = 0; i < 50; ++i) g.positions[3 * i + 1] = -6.f;  // behind the camera
+  RenderSettings rs;
+  rs.near_plane = 0.5f;
+  rs.blur = 0.5f;
+  PreparedFrame plain = prepare_frame(g, cam, rs), compact = prepare_frame(g, cam, rs);
+  compact_frame(compact, rs);
+  std::vector<uint32_t> all(g.size());
+  for (uint32_t j = 0; j < g.size(); ++j) all[j] = j;
+  size_t listed = 0, empty = 0;
+  for (const PreparedFrame* frame : {&plain, &compact}) {
+    const PreparedFrame::Data& d = PreparedFrameAccess::data(*frame);
+    const std::vector<TileBox> boxes = binned_tiles(g, *frame, all);
+    ASSERT_EQ(boxes.size(), g.size());
+    std::vector<std::vector<size_t>> tiles_of(g.size());
+    for (size_t t = 0; t + 1 < d.tile_start.size(); ++t)
+      for (uint32_t e = d.tile_start[t]; e < d.tile_start[t + 1]; ++e) tiles_of[d.splats[d.tile_list[e]].index].push_back(t);
+    for (uint32_t j = 0; j < g.size(); ++j) {
+      const TileBox& b = boxes[j];
+      const size_t area = b.x1 < b.x0 ? 0 : size_t(b.x1 - b.x0 + 1) * size_t(b.y1 - b.y0 + 1);
+      for (size_t t : tiles_of[j]) {
+        const int tx = int(t % size_t(frame->grid_x)), ty = int(t / size_t(frame->grid_x));
+        ASSERT_TRUE(tx >= b.x0 && tx <= b.x1 && ty >= b.y0 && ty <= b.y1) << "Gaussian " << j << ", tile " << t;
+      }
+      if (frame == &plain) {
+        ASSERT_EQ(tiles_of[j].size(), area) << "Gaussian " << j;
+        listed += area > 0;
+        empty += area == 0;
+        if (j < 50) {
+          ASSERT_EQ(area, 0u);
+        }
+      }
+    }
+  }
+  std::printf("binned tiles: %zu Gaussians binned, %zu with no splat\n", listed, empty);
+  EXPECT_GT(listed, g.size() / 2);
+  EXPECT_GE(empty, 50u);
+  EXPECT_THROW(binned_tiles(dense_cloud(10, 1), plain, {0}), Error);
+  EXPECT_THROW(binned_tiles(g, plain, {uint32_t(g.size())}), Error);
+}
+
 TEST(Visibility, TilesReachedAreTheTilesWhoseListsNameAValuedGaussian) {
   // A few Gaussians carry values: the tiles their splats reach are the tiles whose lists
   // name one of them (binning boxes each splat by its unrounded half-widths, which the
@@ -286,20 +334,20 @@ TEST(Visibility, TilesReachedAreTheTilesWhoseListsNameAValuedGaussian) {
         valued[j] = true;
       }
     const std::vector<uint8_t> listing = tiles_listing(plain, std::vector<uint8_t>(tiles, 1), valued, 1);
-    const std::vector<uint8_t> reached = tiles_reached(plain, values, 3);
+    const std::vector<uint8_t> reached = tiles_reached(plain, valued, 3);
     EXPECT_EQ(reached, listing) << "trial " << trial;
     size_t flagged = 0;
     for (uint8_t f : reached) flagged += f;
     EXPECT_GT(flagged, 0u);
     EXPECT_LT(flagged, tiles) << "trial " << trial << ": the test needs tiles no valued splat reaches";
     for (const PreparedFrame* frame : {&plain, &compact}) {
-      const std::vector<uint8_t> t = tiles_reached(*frame, values, 2);
+      const std::vector<uint8_t> t = tiles_reached(*frame, valued, 2);
       const Image all = rasterize(*frame, rs, &values).value;
       const Image only = rasterize(*frame, rs, &values, nullptr, &t).value;
       EXPECT_EQ(only.data, all.data) << "trial " << trial;
     }
   }
-  EXPECT_THROW(tiles_reached(plain, std::vector<float>(3, 1.f)), Error);
+  EXPECT_THROW(tiles_reached(plain, std::vector<bool>(3, true)), Error);
 }
 
 TEST(Visibility, SplitInOrderKeepsEachSidesOrderOnAnyNumberOfThreads) {

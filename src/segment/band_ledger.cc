@@ -69,7 +69,7 @@ ViewVotes BandLedger::add_view(size_t view, const PreparedFrame& frame, const Im
   w.shown.assign(supported_.size(), false);
   for (uint32_t j : shown) w.shown[j] = true;
   // Now: the tiles that list a Gaussian with a positive vote, outside this view's mask (every
-  // tile of a frame whose splats cannot be looked up later).
+  // tile of a frame not compacted: only the voting views' frames are worth the wait).
   std::vector<uint8_t> now = w.tiles;
   if (is_compact(frame)) {
     std::vector<bool> wanted = supported_;
@@ -105,13 +105,12 @@ std::vector<ViewVotes> BandLedger::add_positive(const std::vector<uint32_t>& pos
     Waiting& w = waiting_[i];
     const PreparedFrame& frame = frame_of(w.view);
     const size_t gx = size_t(frame.grid_x);
-    TileBox box;
-    size_t cursor = 0;  // `fresh` is ascending
-    for (uint32_t j : fresh) {
-      // Only a Gaussian a waiting tile lists can release one: the search for its splat is
-      // skipped for the others (most of a vote's Gaussians lie under its own mask).
-      const bool listed = w.listed.empty() || ((w.listed[j >> 6] >> (j & 63)) & 1);
-      if (w.shown[j] || !listed || !splat_tile_box(frame, j, box, cursor)) continue;
+    // Only a Gaussian a waiting tile lists can release one: the others are not projected
+    // (most of a vote's Gaussians lie under its own mask).
+    std::vector<uint32_t> listed;
+    for (uint32_t j : fresh)
+      if (!w.shown[j] && !w.listed.empty() && ((w.listed[j >> 6] >> (j & 63)) & 1)) listed.push_back(j);
+    for (const TileBox& box : binned_tiles(*scene_, frame, listed))
       for (int ty = box.y0; ty <= box.y1; ++ty)
         for (int tx = box.x0; tx <= box.x1; ++tx) {
           const size_t t = size_t(ty) * gx + size_t(tx);
@@ -120,7 +119,6 @@ std::vector<ViewVotes> BandLedger::add_positive(const std::vector<uint32_t>& pos
           now[i][t] = 1;
           w.tiles[t] = 0;
         }
-    }
   });
   for (size_t i = 0; i < waiting_.size(); ++i) {
     if (now[i].empty()) continue;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/scene.h"
 #include "render/rasterizer.h"
 #include "segment/votes.h"
 
@@ -21,7 +22,9 @@ namespace isegman::segment {
 
 class BandLedger {
  public:
-  explicit BandLedger(size_t gaussians = 0) : supported_(gaussians, false) {}
+  // `scene`: the views' scene (its Gaussians' tiles are found by projecting them); it must
+  // outlive the ledger.
+  explicit BandLedger(const GaussianScene& scene) : scene_(&scene), supported_(scene.size(), false) {}
 
   // A view's band (> 0.5 at its pixels; the view's frame and resolution) and its mask's
   // Gaussians (`shown`, ascending: the band's votes leave them out). Returns the votes of
@@ -30,7 +33,8 @@ class BandLedger {
                      int threads);
 
   // A vote's positive Gaussians (ascending): for those voted positive for the first time, the
-  // waiting tiles their splats reach are blended. Returns their votes, one list per view, each
+  // waiting tiles their splats are binned to (binned_tiles: every tile that lists them) are
+  // blended. Returns their votes, one list per view, each
   // to add to the whole weights. `frame_of` gives a view's frame by the index add_view was
   // given (compacted, as add_view saw it).
   std::vector<ViewVotes> add_positive(const std::vector<uint32_t>& positive,
@@ -47,8 +51,8 @@ class BandLedger {
     std::vector<uint8_t> band;   // per pixel, 1 in the band (only in waiting tiles)
     std::vector<uint8_t> tiles;  // per tile, 1 while it waits
     std::vector<bool> shown;     // the view's mask's Gaussians
-    // One bit per Gaussian: those its waiting tiles list (set when they started waiting). A
-    // Gaussian's splat box holds the tiles that list it, so no other Gaussian releases one.
+    // One bit per Gaussian: those its waiting tiles list (set when they started waiting).
+    // Only they can release a tile, so only they are projected.
     std::vector<uint64_t> listed;
   };
   // The band's pixels in the flagged tiles, as an image for masked_votes.
@@ -56,6 +60,7 @@ class BandLedger {
   // `votes` less the Gaussians of `shown`.
   static ViewVotes outside(const ViewVotes& votes, const std::vector<bool>& shown);
 
+  const GaussianScene* scene_;
   std::vector<bool> supported_;  // has had a positive vote
   std::vector<Waiting> waiting_;
   size_t blended_ = 0;

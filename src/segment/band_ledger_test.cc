@@ -78,7 +78,7 @@ void add(std::map<uint32_t, int64_t>& sums, const ViewVotes& v) {
 TEST(BandLedger, ASupportedGaussianHasItsWholeBandWeightWhateverWaits) {
   Case c(true);
   ASSERT_GT(c.truth.size(), 200u);
-  BandLedger ledger(c.scene.size());
+  BandLedger ledger(c.scene);
   auto frame_of = [&](size_t) -> const PreparedFrame& { return c.frame; };
   std::map<uint32_t, int64_t> sums;
   std::vector<bool> supported(c.scene.size(), false);
@@ -134,7 +134,7 @@ TEST(BandLedger, ASupportedGaussianHasItsWholeBandWeightWhateverWaits) {
 
 TEST(BandLedger, AFrameNotCompactedWaitsForNothing) {
   Case c(false);
-  BandLedger ledger(c.scene.size());
+  BandLedger ledger(c.scene);
   std::map<uint32_t, int64_t> sums;
   add(sums, ledger.add_view(0, c.frame, c.band, c.shown, 2));
   EXPECT_EQ(ledger.waiting_tiles(), 0u);

@@ -358,15 +358,15 @@ bool Session::undo() {
 
 namespace {
 
-// The blend of per-Gaussian values (the selection's) in a view: its coverage there.
-Image selection_values_coverage(const SegmentView& view, const std::vector<float>& values, int threads) {
+// The selection's coverage in a view: the blend of its values (1 selected, 0 not).
+Image selection_values_coverage(const SegmentView& view, const LiveSelection& selection, int threads) {
   RenderSettings rs;
   rs.color = false;
   rs.depth = false;
   rs.threads = threads;
   // Only the tiles its splats reach: elsewhere the blend of the values is 0.
-  const std::vector<uint8_t> tiles = tiles_reached(view.frame, values, threads);
-  return rasterize(view.frame, rs, &values, nullptr, &tiles).value;
+  const std::vector<uint8_t> tiles = tiles_reached(view.frame, selection.eligible(), threads);
+  return rasterize(view.frame, rs, &selection.values(), nullptr, &tiles).value;
 }
 
 // The candidate most consistent with the rendered selection (IoU); SAM's own choice
@@ -709,7 +709,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
   });
   // A round is a function of the clicks: votes start empty and every view is re-judged.
   VoteAccumulator& acc = next.votes;
-  BandLedger band_ledger(scene_.size());
+  BandLedger band_ledger(scene_);
   const std::function<const PreparedFrame&(size_t)> frame_of = [&](size_t k) -> const PreparedFrame& {
     return views_[k].frame;
   };
@@ -871,7 +871,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     fresh = unjudged;
     acc = VoteAccumulator(scene_.size());
     set_aside.clear();
-    band_ledger = BandLedger(scene_.size());
+    band_ledger = BandLedger(scene_);
     live.reset(scene_.size(), {o.tau, min_weight, o.centre_rule, {o.whole_neutral, o.whole_min_share}}, &excluded_);
     first = true;
     negative_switched = false;
@@ -894,7 +894,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         const std::vector<float>& values = live.values();
         if (several) {  // the coverage decides the candidate, then the candidate's votes
           TimeInto timed{part.coverage};
-          coverage = selection_values_coverage(views_[k], values, o.threads);
+          coverage = selection_values_coverage(views_[k], live, o.threads);
           take(vs, k, results[k],
                          respect_negatives(r, inspect ? fallback_candidate(r, coverage) : choose(r, &coverage, o.min_coverage_pixels),
                                            vs, &conflict));
@@ -1010,7 +1010,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
           // each of its three candidates, the selection's box the part in view.
           if (o.selection_prompt_growth) {
             std::vector<models::Click> prompt;
-            const Image full = selection_values_coverage(views_[k], values, o.threads);
+            const Image full = selection_values_coverage(views_[k], live, o.threads);
             if (prompt_from_coverage(full, prompt)) {
               ViewState grown = vs;
               const auto boxed = std::make_shared<const models::SegmentResult>(sam_->decode(views_[k].embedding, prompt));
@@ -1103,7 +1103,6 @@ RoundReport Session::run_round(State& next, const State& prev) {
   for (int round = 0; round < o.selection_prompt_rounds && !first; ++round) {
     decide();  // the round's votes are judged against the selection it starts from
     const std::vector<bool>& current = live.eligible();
-    const std::vector<float>& values = live.values();
     std::vector<size_t> which;
     std::vector<std::vector<models::Click>> prompts;
     std::vector<Image> coverages;
@@ -1113,7 +1112,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       Image cov;
       {
         TimeInto timed{part.coverage};
-        cov = selection_values_coverage(views_[k], values, o.threads);
+        cov = selection_values_coverage(views_[k], live, o.threads);
       }
       int covered = 0;
       for (float v : cov.data) covered += v > 0.5f;
