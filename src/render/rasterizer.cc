@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#ifdef __AVX__
+#include <immintrin.h>
+#endif
 #include <cstring>
 #include <type_traits>
 
@@ -46,6 +49,8 @@ struct TileBuffers {
 // it, pairs of SSE registers otherwise).
 typedef float v8f __attribute__((vector_size(32)));
 typedef int32_t v8i __attribute__((vector_size(32)));
+typedef double v8d __attribute__((vector_size(64)));
+typedef int64_t v8q __attribute__((vector_size(64)));
 
 inline v8f splat8(float v) { return v8f{v, v, v, v, v, v, v, v}; }
 
@@ -71,10 +76,16 @@ inline v8f select8(v8i mask, v8f a, v8f b) {
   return (v8f)(((v8i)a & mask) | ((v8i)b & ~mask));
 }
 
+// Lanes set in a comparison's result (every bit of a lane set or none): the sign bits'
+// count, one instruction pair with AVX.
 inline int lanes_set(v8i mask) {
+#ifdef __AVX__
+  return __builtin_popcount(unsigned(_mm256_movemask_ps(_mm256_castsi256_ps((__m256i)mask))));
+#else
   int n = 0;
   for (int i = 0; i < 8; ++i) n -= mask[i];
   return n;
+#endif
 }
 
 // Projects Gaussian i; false when it cannot contribute to any pixel. One compiled body
@@ -211,9 +222,17 @@ inline int blend_group(const Splat& g, const float* rgb, float depth, float valu
   }
   if constexpr (kSums) {
     entry.blended |= uint8_t(lanes_set(valid) > 0);
-    if (added > 0)
-      for (int i = 0; i < kLanes; ++i)
-        if (contrib[i] && ((sum_lanes >> i) & 1u)) entry.sum += uint32_t(fixed_weight(w[i]));
+    if (added > 0) {
+      // fixed_weight() on every lane at once (w is 0 where nothing contributed), kept in the
+      // summed lanes: the same integers as lane by lane.
+      static const v8i kBit = {1, 2, 4, 8, 16, 32, 64, 128};
+      const v8i summed = (kBit & int32_t(sum_lanes)) != 0;
+      const v8q fixed = __builtin_convertvector(__builtin_convertvector(w, v8d) * kWeightScale + 0.5, v8q) &
+                        __builtin_convertvector(summed, v8q);
+      int64_t total = 0;
+      for (int i = 0; i < kLanes; ++i) total += fixed[i];
+      entry.sum += uint32_t(total);
+    }
   }
   return lanes_set(term);
 }
@@ -557,6 +576,7 @@ RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, cons
       // Every Gaussian of the tile carries 1, or every one 0: the stored blend is the answer.
       bool ones = true, zeros = true;
       for (size_t n = 0; n < count && (ones || zeros); ++n) {
+        if (n + kPrefetchAhead < count) __builtin_prefetch(&vals[splats[list[n + kPrefetchAhead]].index]);  // read at random
         const float v = vals[splats[list[n]].index];
         ones &= v == 1.f;
         zeros &= v == 0.f;
