@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <type_traits>
 #ifdef __AVX__
 #include <immintrin.h>
 #endif
-#include <cstring>
-#include <type_traits>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -90,8 +90,9 @@ inline int lanes_set(v8i mask) {
 
 // Projects Gaussian i; false when it cannot contribute to any pixel. One compiled body
 // (never inlined), so binned_tiles finds the very tile rect prepare_frame binned with.
-__attribute__((noinline)) bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera& cam, const RenderSettings& s,
-                    int degree, int grid_x, int grid_y, Projected& proj) {
+__attribute__((noinline)) bool preprocess_one(const GaussianScene& scene, size_t i, const ProjectionCamera& cam,
+                                              const RenderSettings& s, int degree, int grid_x, int grid_y,
+                                              Projected& proj) {
   Splat& out = proj.splat;
   const float opacity = 1.f / (1.f + std::exp(-scene.opacity[i]));
   if (!(opacity >= kMinAlpha)) return false;  // can never reach alpha 1/255

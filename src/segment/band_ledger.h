@@ -34,9 +34,9 @@ class BandLedger {
 
   // A vote's positive Gaussians (ascending): for those voted positive for the first time, the
   // waiting tiles their splats are binned to (binned_tiles: every tile that lists them) are
-  // blended. Returns their votes, one list per view, each
-  // to add to the whole weights. `frame_of` gives a view's frame by the index add_view was
-  // given (compacted, as add_view saw it).
+  // blended. Returns their votes, one list per view, each to add to the whole weights.
+  // `frame_of` gives a view's frame by the index add_view was given (compacted, as add_view
+  // saw it).
   std::vector<ViewVotes> add_positive(const std::vector<uint32_t>& positive,
                                       const std::function<const PreparedFrame&(size_t)>& frame_of, int threads);
 
