@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/parallel.h"
+#include "core/prefetch.h"
 #include "core/random.h"
 
 namespace isegman::segment {
@@ -240,6 +241,7 @@ double near_depth(const GaussianScene& scene, const Camera& camera, const ViewVo
   std::vector<std::pair<double, double>> dw(n);
   parallel_chunks(n, grain, threads, [&](size_t, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
+      prefetch_centre_ahead(scene, votes.index, k);
       const uint32_t g = votes.index[k];
       dw[k] = {camera.world_to_camera({scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]}).z,
                double(votes.weight[k])};
@@ -509,6 +511,14 @@ SurroundingsSurface surroundings_surface(const GaussianScene& scene, const Camer
   parallel_chunks(n, grain, threads, [&](size_t chunk, size_t begin, size_t end) {
     std::vector<std::pair<double, double>> out;  // moved in at the end: the chunks' vectors share cache lines
     for (size_t s = begin; s < end; ++s) {
+      // The filed samples read the list at random, and their centres through it: the list's
+      // entry kPrefetchAhead samples on, and the centre of the one half as far on.
+      if (indexed && s + kPrefetchAhead < n) __builtin_prefetch(&total.index[filed[s + kPrefetchAhead]]);
+      if (s + kPrefetchAhead / 2 < n) {
+        const size_t ka = indexed ? filed[s + kPrefetchAhead / 2] : (s + kPrefetchAhead / 2) * stride;
+        __builtin_prefetch(scene.positions.data() + 3 * size_t(total.index[ka]));
+        __builtin_prefetch(&total.weight[ka]);
+      }
       const size_t k = indexed ? filed[s] : s * stride;
       double u, v, cz;
       if (!camera.project(scene.position(total.index[k]), u, v, &cz)) continue;
@@ -572,6 +582,7 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   std::vector<uint8_t> at_seed(n, 0);
   parallel_chunks(n, grain, threads, [&](size_t, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
+      prefetch_centre_ahead(scene, positive.index, k);
       double u, v, cz;
       if (!camera.project(scene.position(positive.index[k]), u, v, &cz)) continue;
       if (u >= 0 && v >= 0 && u < background.width && v < background.height) {

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/parallel.h"
+#include "core/prefetch.h"
 #include "render/projection.h"
 
 namespace isegman::segment {
@@ -259,6 +260,7 @@ GateReport gate_by_depth(const GaussianScene& scene, const Camera& camera, ViewV
   // Per entry, independent: chunks in parallel.
   parallel_chunks(n, grain, threads, [&](size_t, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
+      prefetch_centre_ahead(scene, positive.index, k);
       const uint32_t g = positive.index[k];
       const Vec3 centre{scene.positions[3 * g], scene.positions[3 * g + 1], scene.positions[3 * g + 2]};
       depth[k] = float(camera.world_to_camera(centre).z);

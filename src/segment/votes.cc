@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/prefetch.h"
 #include "segment/depth_layers.h"
 
 namespace isegman::segment {
@@ -46,7 +47,10 @@ void scatter_add(ZeroedArray<int64_t>& into, const ViewVotes& v, int64_t sign, i
   const size_t n = v.index.size();
   const size_t grain = list_grain(n);
   parallel_chunks(n, grain, threads, [&](size_t, size_t a, size_t e) {
-    for (size_t k = a; k < e; ++k) into[v.index[k]] += sign * v.weight[k];
+    for (size_t k = a; k < e; ++k) {
+      prefetch_element_ahead(into.data(), v.index, k);
+      into[v.index[k]] += sign * v.weight[k];
+    }
   });
 }
 }  // namespace
@@ -92,6 +96,7 @@ ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const 
     ViewVotes out;  // moved in at the end: the chunks' lists share cache lines
     size_t t = size_t(std::lower_bound(total.index.begin(), total.index.end(), positive.index[begin]) - total.index.begin());
     for (size_t k = begin; k < end; ++k) {
+      prefetch_centre_ahead(scene, positive.index, k);
       const uint32_t g = positive.index[k];
       while (t < total.index.size() && total.index[t] < g) ++t;
       if (t == total.index.size() || total.index[t] != g) continue;
