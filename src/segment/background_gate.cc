@@ -581,18 +581,31 @@ size_t gate_background(const GaussianScene& scene, const Camera& camera, const I
   std::vector<double> seed_distance(n, std::numeric_limits<double>::infinity());  // distance_to_seeds
   std::vector<uint8_t> at_seed(n, 0);
   parallel_chunks(n, grain, threads, [&](size_t, size_t begin, size_t end) {
-    for (size_t k = begin; k < end; ++k) {
-      prefetch_centre_ahead(scene, positive.index, k);
-      double u, v, cz;
-      if (!camera.project(scene.position(positive.index[k]), u, v, &cz)) continue;
-      if (u >= 0 && v >= 0 && u < background.width && v < background.height) {
-        const float bg = background.at(int(u), int(v));
-        if (bg > 0) offset[k] = (1.0 / cz) / bg - 1 - surface.offset;
-        pixel[2 * k] = int32_t(u);
-        pixel[2 * k + 1] = int32_t(v);
+    // In blocks: the block's centres are projected first and the estimate at their pixels
+    // prefetched (a scattered list's centres fall anywhere in the view), then read.
+    constexpr size_t kBlock = 32;
+    double cz[kBlock];
+    bool projects[kBlock];
+    for (size_t b0 = begin; b0 < end; b0 += kBlock) {
+      const size_t b1 = std::min(end, b0 + kBlock);
+      for (size_t k = b0; k < b1; ++k) {
+        prefetch_centre_ahead(scene, positive.index, k);
+        double u, v;
+        projects[k - b0] = camera.project(scene.position(positive.index[k]), u, v, &cz[k - b0]);
+        if (!projects[k - b0]) continue;
+        if (u >= 0 && v >= 0 && u < background.width && v < background.height) {
+          __builtin_prefetch(&background.data[size_t(v) * size_t(background.width) + size_t(u)]);
+          pixel[2 * k] = int32_t(u);
+          pixel[2 * k + 1] = int32_t(v);
+        }
+        seed_distance[k] = distance_to_seeds(target, u, v);
+        at_seed[k] = seed_distance[k] <= o.seed_radius;
       }
-      seed_distance[k] = distance_to_seeds(target, u, v);
-      at_seed[k] = seed_distance[k] <= o.seed_radius;
+      for (size_t k = b0; k < b1; ++k) {
+        if (!projects[k - b0] || pixel[2 * k] < 0) continue;
+        const float bg = background.at(pixel[2 * k], pixel[2 * k + 1]);
+        if (bg > 0) offset[k] = (1.0 / cz[k - b0]) / bg - 1 - surface.offset;
+      }
     }
   });
   std::vector<std::pair<double, double>> seed_offsets;  // (offset, weight) of the clicked Gaussians

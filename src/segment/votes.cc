@@ -95,31 +95,53 @@ ViewVotes centred_votes(const GaussianScene& scene, const Camera& camera, const 
   auto run = [&](size_t chunk, size_t begin, size_t end) {
     ViewVotes out;  // moved in at the end: the chunks' lists share cache lines
     size_t t = size_t(std::lower_bound(total.index.begin(), total.index.end(), positive.index[begin]) - total.index.begin());
-    for (size_t k = begin; k < end; ++k) {
-      prefetch_centre_ahead(scene, positive.index, k);
-      const uint32_t g = positive.index[k];
-      while (t < total.index.size() && total.index[t] < g) ++t;
-      if (t == total.index.size() || total.index[t] != g) continue;
-      double u = 0, v = 0, z = 0;
-      const bool projects = camera.project(scene.position(g), u, v, &z);  // false: behind the camera
-      const int x = projects ? int(std::floor(u)) : -1, y = projects ? int(std::floor(v)) : -1;
-      const bool in_frame = x >= 0 && y >= 0 && x < mask.width && y < mask.height;
-      const double surface = in_frame && have_depth ? double(depth.at(x, y)) : 0.0;
-      // The extent (a covariance per Gaussian) only where the centre lies beyond the 5 %
-      // margin: one within it is never hidden, whatever the extent (it is >= 0).
-      const bool hidden = surface > 0 && z > surface * 1.05 &&
-                          z > surface * 1.05 + 2.0 * depth_extent(scene, camera, g);
-      bool counts;
-      if (in_frame && mask.at(x, y) > 0.5f) {
-        counts = !hidden;
-      } else if (!in_frame || (hidden && !mask_near(mask, x, y, margin))) {
-        counts = 2 * positive.weight[k] > total.weight[t];
-      } else {
-        counts = false;  // a visible centre outside the mask, or one hidden at the mask's edge
+    // In blocks: the block's centres are projected first and the depth and mask values at
+    // their pixels prefetched, then each centre is judged. A scattered list's centres fall
+    // anywhere in the view, and those reads would each wait on memory.
+    constexpr size_t kBlock = 32;
+    struct Centre {
+      double z;
+      int x, y;
+    };
+    Centre block[kBlock];
+    for (size_t b0 = begin; b0 < end; b0 += kBlock) {
+      const size_t b1 = std::min(end, b0 + kBlock);
+      for (size_t k = b0; k < b1; ++k) {
+        prefetch_centre_ahead(scene, positive.index, k);
+        double u = 0, v = 0, z = 0;
+        const bool projects = camera.project(scene.position(positive.index[k]), u, v, &z);  // false: behind the camera
+        Centre& c = block[k - b0];
+        c = {z, projects ? int(std::floor(u)) : -1, projects ? int(std::floor(v)) : -1};
+        if (c.x >= 0 && c.y >= 0 && c.x < mask.width && c.y < mask.height) {
+          __builtin_prefetch(&mask.data[size_t(c.y) * size_t(mask.width) + size_t(c.x)]);
+          if (have_depth) __builtin_prefetch(&depth.data[size_t(c.y) * size_t(depth.width) + size_t(c.x)]);
+        }
       }
-      if (!counts) continue;
-      out.index.push_back(g);
-      out.weight.push_back(total.weight[t]);
+      for (size_t k = b0; k < b1; ++k) {
+        const uint32_t g = positive.index[k];
+        while (t < total.index.size() && total.index[t] < g) ++t;
+        if (t == total.index.size() || total.index[t] != g) continue;
+        const Centre& c = block[k - b0];
+        const int x = c.x, y = c.y;
+        const double z = c.z;
+        const bool in_frame = x >= 0 && y >= 0 && x < mask.width && y < mask.height;
+        const double surface = in_frame && have_depth ? double(depth.at(x, y)) : 0.0;
+        // The extent (a covariance per Gaussian) only where the centre lies beyond the 5 %
+        // margin: one within it is never hidden, whatever the extent (it is >= 0).
+        const bool hidden = surface > 0 && z > surface * 1.05 &&
+                            z > surface * 1.05 + 2.0 * depth_extent(scene, camera, g);
+        bool counts;
+        if (in_frame && mask.at(x, y) > 0.5f) {
+          counts = !hidden;
+        } else if (!in_frame || (hidden && !mask_near(mask, x, y, margin))) {
+          counts = 2 * positive.weight[k] > total.weight[t];
+        } else {
+          counts = false;  // a visible centre outside the mask, or one hidden at the mask's edge
+        }
+        if (!counts) continue;
+        out.index.push_back(g);
+        out.weight.push_back(total.weight[t]);
+      }
     }
     parts[chunk] = std::move(out);
   };
