@@ -3,9 +3,10 @@
 // at the end), so the ~10^5-10^6 Gaussians a mask shows lie scattered over the scene's
 // arrays, and a pass that reads their centres or sums waits on memory at every entry: the
 // hardware prefetchers do not follow an index list. Issuing the load kPrefetchAhead entries
-// early hides that wait (a pass over 400k of 6M scattered centres: 7.1 -> 4.1 ms, Zen 5);
-// on a scene whose objects lie in index ranges (the synthetic ones) it costs nothing.
-// A prefetch never faults and changes no result.
+// early hides that wait: a pass over 400k of 6M scattered centres 6.7-7.4 -> 3.8-4.1 ms; over
+// an index range, as the synthetic scenes' objects lie, it costs 0.61-0.65 -> 1.0 ms (Zen 5,
+// `build/bench/scene_bench --benchmark_filter=CentresThroughList`). A prefetch never faults
+// and changes no result.
 #pragma once
 
 #include <cstddef>
