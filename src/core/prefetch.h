@@ -17,6 +17,7 @@
 
 namespace isegman {
 
+// (The tile kernel walks its tile lists with its own distance, kTileListPrefetchAhead.)
 constexpr size_t kPrefetchAhead = 16;
 
 // Before reading entry k of `index`: the centre of the Gaussian kPrefetchAhead entries on

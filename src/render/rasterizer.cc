@@ -257,7 +257,7 @@ void tile_lanes(const Image* mask, int x_begin, int y_begin, int x_end, int y_en
 // at random from arrays far larger than the cache in a large scene; the loop asks for
 // them this many entries ahead (the splat) and half as many (its value, once the splat has
 // arrived). A mask's sums over a 6M-Gaussian view: ~42 -> ~33 ms (BM_VotePass).
-constexpr size_t kPrefetchAhead = 32;
+constexpr size_t kTileListPrefetchAhead = 32;
 template <bool kVisit, bool kSums, bool kShade>
 void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, const float* depths,
                  const uint32_t* list, size_t count,
@@ -312,8 +312,8 @@ void raster_tile(int tile_x, int tile_y, const Splat* splats, const float* rgb, 
   };
   EntrySum unused;
   for (size_t n = 0; n < count && finished < pixels; ++n) {
-    if (n + kPrefetchAhead < count) __builtin_prefetch(&splats[list[n + kPrefetchAhead]]);
-    if (want_value && n + kPrefetchAhead / 2 < count) __builtin_prefetch(&values[splats[list[n + kPrefetchAhead / 2]].index]);
+    if (n + kTileListPrefetchAhead < count) __builtin_prefetch(&splats[list[n + kTileListPrefetchAhead]]);
+    if (want_value && n + kTileListPrefetchAhead / 2 < count) __builtin_prefetch(&values[splats[list[n + kTileListPrefetchAhead / 2]].index]);
     const Splat& g = splats[list[n]];
     const float* col = rgb ? rgb + 3 * size_t(list[n]) : kBlack;
     const float depth = kShade ? depths[list[n]] : 0.f;
@@ -577,7 +577,7 @@ RenderOutput run_tiles(const PreparedFrame& frame, const RenderSettings& s, cons
       // Every Gaussian of the tile carries 1, or every one 0: the stored blend is the answer.
       bool ones = true, zeros = true;
       for (size_t n = 0; n < count && (ones || zeros); ++n) {
-        if (n + kPrefetchAhead < count) __builtin_prefetch(&vals[splats[list[n + kPrefetchAhead]].index]);  // read at random
+        if (n + kTileListPrefetchAhead < count) __builtin_prefetch(&vals[splats[list[n + kTileListPrefetchAhead]].index]);  // read at random
         const float v = vals[splats[list[n]].index];
         ones &= v == 1.f;
         zeros &= v == 0.f;
