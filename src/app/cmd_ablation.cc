@@ -18,6 +18,7 @@
 #include "app/hard_scenes.h"
 #include "app/segment_args.h"
 #include "core/error.h"
+#include "core/spatial_order.h"
 #include "io/atomic_file.h"
 #include "io/scene_loader.h"
 #include "io/image_io.h"
@@ -158,7 +159,11 @@ int run_eval_ablation(const Args& args) {
       for (auto& t : segment::find_tasks(task_dir, fixtures))
         if (only.empty() || t.name.find(only) != std::string::npos) fixture_tasks.push_back(std::move(t));
       for (const auto& t : fixture_tasks)
-        if (!fixture_scenes.count(t.scene_dir)) fixture_scenes.emplace(t.scene_dir, load_scene(t.scene_dir));
+        if (!fixture_scenes.count(t.scene_dir)) {
+          SceneBundle b = load_scene(t.scene_dir);
+          put_in_space_order(b.gaussians);  // as `segment` and `serve` work on it
+          fixture_scenes.emplace(t.scene_dir, std::move(b));
+        }
     }
   }
   if (tasks.empty() && fixture_tasks.empty()) throw Error("--only '" + only + "' matches no task");

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/output_plan.h"
 #include "core/selection.h"
+#include "core/spatial_order.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/ply.h"
@@ -63,6 +64,11 @@ int run_segment(const std::vector<std::string>& argv) {
   SegmentSetup setup = parse_segment_setup(args);
   auto sam = load_sam(setup);
 
+  // The session works on the scene in space order (core/spatial_order.h); the selection file
+  // names the Gaussians in the file's order, and carries the file's fingerprint.
+  const uint64_t file_fingerprint = b.gaussians.fingerprint();
+  const SpaceOrder space = put_in_space_order(b.gaussians);
+
   segment::PipelineTimings t;
   auto session = segment::segment_from_prompts(b, camera_index, clicks, sam, setup.session, setup.views,
                                                setup.views_spec, &t,
@@ -89,8 +95,8 @@ int run_segment(const std::vector<std::string>& argv) {
   std::printf("selected %zu of %zu Gaussians\n", count, sel.size());
   if (count == 0) throw Error("nothing was selected; try another click or a lower --tau");
 
-  Selection s = Selection::from_mask(b.gaussians, sel);
-  s.score = session->scores();
+  Selection s = Selection::from_mask(b.gaussians, space.to_file_order(sel), file_fingerprint);
+  s.score = space.to_file_order(session->scores());
   write_selection(out, s);
   std::printf("wrote %s\n", out.c_str());
   if (args.has("ply")) {
