@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/prefetch.h"
 #include "render/radix_sort.h"
 #include "render/tile_kernel.h"
 
@@ -47,15 +48,24 @@ SplatSums& splat_sums() {
   return pool;
 }
 
-// A list whose Gaussians are unique, put in ascending Gaussian index.
-void sort_by_gaussian(GaussianWeights& list, int threads) {
-  std::vector<uint32_t> keys = list.index, position(keys.size());
+// The (Gaussian, sum) pairs in ascending Gaussian index, the sums of a Gaussian listed more
+// than once added up (integers, so the order they were found in does not matter).
+template <class Sum>
+GaussianWeights sum_by_gaussian(std::vector<uint32_t> keys, const std::vector<Sum>& sums, int threads) {
+  std::vector<uint32_t> position(keys.size());
   std::iota(position.begin(), position.end(), 0u);
   radix_sort_pairs(keys, position, threads);
-  std::vector<int64_t> weight(keys.size());
-  for (size_t k = 0; k < keys.size(); ++k) weight[k] = list.weight[position[k]];
-  list.index = std::move(keys);
-  list.weight = std::move(weight);
+  GaussianWeights out;
+  out.index.reserve(keys.size());
+  out.weight.reserve(keys.size());
+  for (size_t i = 0; i < keys.size();) {
+    const uint32_t g = keys[i];
+    int64_t total = 0;
+    for (; i < keys.size() && keys[i] == g; ++i) total += int64_t(sums[position[i]]);
+    out.index.push_back(g);
+    out.weight.push_back(total);
+  }
+  return out;
 }
 }  // namespace
 
@@ -350,15 +360,13 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     });
     for (std::vector<uint64_t>& from : per_splat)
       if (!from.empty()) splat_sums().give_back(std::move(from));
-    GaussianWeights out = join_in_order(std::move(parts));
-    sort_by_gaussian(out, slots);
-    return out;
+    GaussianWeights joined = join_in_order(std::move(parts));  // each Gaussian once, in splat order
+    return sum_by_gaussian(std::move(joined.index), joined.weight, slots);
   }
-  // Sum per Gaussian: sort the (Gaussian, sum) pairs by Gaussian (integer sums, so the
-  // order they were found in does not matter).
+  // Each worker's (Gaussian, sum) pairs, a Gaussian once per tile it was found in.
   size_t pairs = 0;
   for (const auto& k : keys) pairs += k.size();
-  std::vector<uint32_t> all_keys, position(pairs), all_sums;
+  std::vector<uint32_t> all_keys, all_sums;
   all_keys.reserve(pairs);
   all_sums.reserve(pairs);
   for (int w = 0; w < slots; ++w) {
@@ -367,17 +375,7 @@ GaussianWeights weight_sums(const PreparedFrame& frame, const Image* mask, const
     std::vector<uint32_t>().swap(keys[size_t(w)]);
     std::vector<uint32_t>().swap(sums[size_t(w)]);
   }
-  for (size_t i = 0; i < pairs; ++i) position[i] = uint32_t(i);
-  radix_sort_pairs(all_keys, position, slots);
-  GaussianWeights out;
-  for (size_t i = 0; i < pairs;) {
-    const uint32_t g = all_keys[i];
-    int64_t total = 0;
-    for (; i < pairs && all_keys[i] == g; ++i) total += all_sums[position[i]];
-    out.index.push_back(g);
-    out.weight.push_back(total);
-  }
-  return out;
+  return sum_by_gaussian(std::move(all_keys), all_sums, slots);
 }
 
 std::vector<uint8_t> tiles_listing(const PreparedFrame& frame, const std::vector<uint8_t>& tiles,
@@ -402,7 +400,7 @@ std::vector<uint8_t> tiles_listing(const PreparedFrame& frame, const std::vector
     seen.clear();
     bool found = false;
     for (uint32_t e = begin; e < end; ++e) {
-      if (e + 16 < end) __builtin_prefetch(&d.splats[d.tile_list[e + 16]]);  // read at random, as in the tile loop
+      if (e + kPrefetchAhead < end) __builtin_prefetch(&d.splats[d.tile_list[e + kPrefetchAhead]]);  // read at random
       const uint32_t g = d.splats[d.tile_list[e]].index;
       if (wanted[g]) {
         found = true;
