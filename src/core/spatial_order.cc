@@ -85,27 +85,42 @@ void reorder(GaussianScene& scene, const std::vector<uint32_t>& order) {
       seen[from] = true;
     }
   }
-  // One array at a time through a buffer of its size, so the scene's memory grows by its
-  // largest array (the SH coefficients) at most, for the moment of its gather.
+  // Each array moves in slices of its rows, at most a cache line wide: a slice of every row
+  // is gathered into a buffer, then written back in place (the other slices are untouched).
+  // The buffer holds 64 bytes a Gaussian (384 MB at 6M, 0.27x a scene with SH degree 3), so
+  // the scene's memory never doubles; a row's cache lines are read in three passes instead
+  // of one, about as many misses.
+  std::vector<std::pair<uint8_t*, size_t>> arrays = {  // (data, bytes a row)
+      {reinterpret_cast<uint8_t*>(scene.positions.data()), 3 * sizeof(float)},
+      {reinterpret_cast<uint8_t*>(scene.sh.data()), size_t(scene.coeffs()) * 3 * sizeof(float)},
+      {reinterpret_cast<uint8_t*>(scene.opacity.data()), sizeof(float)},
+      {reinterpret_cast<uint8_t*>(scene.scales.data()), 3 * sizeof(float)},
+      {reinterpret_cast<uint8_t*>(scene.rotations.data()), 4 * sizeof(float)}};
+  if (!scene.normals.empty()) arrays.emplace_back(reinterpret_cast<uint8_t*>(scene.normals.data()), 3 * sizeof(float));
+  for (auto& e : scene.extras) arrays.emplace_back(e.data.data(), size_t(e.size));
+  constexpr size_t kSlice = 64;
+  size_t widest = 0;
+  for (const auto& a : arrays) widest = std::max(widest, std::min(kSlice, a.second));
+  ZeroedArray<uint8_t> buffer(n * widest);  // huge pages: a fresh 4 KiB page faults at ~25 us here
+  const size_t chunk = size_t(1) << 15, chunks = (n + chunk - 1) / chunk;
   auto gather = [&](uint8_t* data, size_t row_bytes) {
-    ZeroedArray<uint8_t> moved(n * row_bytes);  // huge pages: a fresh 4 KiB page faults at ~25 us here
-    const size_t chunk = size_t(1) << 15;
-    parallel_for((n + chunk - 1) / chunk, 0, [&](int, size_t c) {
-      const size_t end = std::min(n, (c + 1) * chunk);
-      for (size_t k = c * chunk; k < end; ++k) {
-        if (k + kPrefetchAhead < end) __builtin_prefetch(data + size_t(order[k + kPrefetchAhead]) * row_bytes);
-        std::memcpy(moved.data() + k * row_bytes, data + size_t(order[k]) * row_bytes, row_bytes);
-      }
-    });
-    std::memcpy(data, moved.data(), n * row_bytes);
+    for (size_t offset = 0; offset < row_bytes; offset += kSlice) {
+      const size_t width = std::min(kSlice, row_bytes - offset);
+      const uint8_t* from = data + offset;
+      parallel_for(chunks, 0, [&](int, size_t c) {
+        const size_t end = std::min(n, (c + 1) * chunk);
+        for (size_t k = c * chunk; k < end; ++k) {
+          if (k + kPrefetchAhead < end) __builtin_prefetch(from + size_t(order[k + kPrefetchAhead]) * row_bytes);
+          std::memcpy(buffer.data() + k * width, from + size_t(order[k]) * row_bytes, width);
+        }
+      });
+      parallel_for(chunks, 0, [&](int, size_t c) {
+        const size_t end = std::min(n, (c + 1) * chunk);
+        for (size_t k = c * chunk; k < end; ++k) std::memcpy(data + k * row_bytes + offset, buffer.data() + k * width, width);
+      });
+    }
   };
-  gather(reinterpret_cast<uint8_t*>(scene.positions.data()), 3 * sizeof(float));
-  gather(reinterpret_cast<uint8_t*>(scene.sh.data()), size_t(scene.coeffs()) * 3 * sizeof(float));
-  gather(reinterpret_cast<uint8_t*>(scene.opacity.data()), sizeof(float));
-  gather(reinterpret_cast<uint8_t*>(scene.scales.data()), 3 * sizeof(float));
-  gather(reinterpret_cast<uint8_t*>(scene.rotations.data()), 4 * sizeof(float));
-  if (!scene.normals.empty()) gather(reinterpret_cast<uint8_t*>(scene.normals.data()), 3 * sizeof(float));
-  for (auto& e : scene.extras) gather(e.data.data(), size_t(e.size));
+  for (const auto& [data, row_bytes] : arrays) gather(data, row_bytes);
 }
 
 SpaceOrder put_in_space_order(GaussianScene& scene) {
