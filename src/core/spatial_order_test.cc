@@ -67,31 +67,35 @@ TEST(SpatialOrder, TiesKeepTheirIndexOrderAndRepeatsGiveTheSameOrder) {
 }
 
 TEST(SpatialOrder, ReorderMovesEveryArrayTogether) {
-  const GaussianScene original = tagged_scene(3000, 3, 9);
-  GaussianScene s = original;
-  const SpaceOrder space = put_in_space_order(s);
-  ASSERT_EQ(s.size(), original.size());
-  for (size_t k = 0; k < s.size(); ++k) {
-    const size_t i = space.order[k];
-    ASSERT_EQ(s.position(k).x, original.position(i).x) << k;
-    ASSERT_EQ(s.opacity[k], float(i)) << k;
-    for (int c = 0; c < s.coeffs() * 3; ++c) ASSERT_EQ(s.sh_of(k)[c], original.sh_of(i)[c]) << k;
-    for (int a = 0; a < 3; ++a) ASSERT_EQ(s.scales[3 * k + a], original.scales[3 * i + a]) << k;
-    for (int a = 0; a < 4; ++a) ASSERT_EQ(s.rotations[4 * k + a], original.rotations[4 * i + a]) << k;
-    for (int a = 0; a < 3; ++a) ASSERT_EQ(s.normals[3 * k + a], original.normals[3 * i + a]) << k;
-    uint32_t tag = 0;
-    std::memcpy(&tag, s.extras[0].data.data() + 4 * k, 4);
-    ASSERT_EQ(tag, uint32_t(i) * 7u + 1u) << k;
+  // Rows of 48, 108 and 192 bytes of SH: one slice, a slice and a part, three slices.
+  for (int degree : {1, 2, 3}) {
+    SCOPED_TRACE("SH degree " + std::to_string(degree));
+    const GaussianScene original = tagged_scene(3000, degree, 9);
+    GaussianScene s = original;
+    const SpaceOrder space = put_in_space_order(s);
+    ASSERT_EQ(s.size(), original.size());
+    for (size_t k = 0; k < s.size(); ++k) {
+      const size_t i = space.order[k];
+      ASSERT_EQ(s.position(k).x, original.position(i).x) << k;
+      ASSERT_EQ(s.opacity[k], float(i)) << k;
+      for (int c = 0; c < s.coeffs() * 3; ++c) ASSERT_EQ(s.sh_of(k)[c], original.sh_of(i)[c]) << k;
+      for (int a = 0; a < 3; ++a) ASSERT_EQ(s.scales[3 * k + a], original.scales[3 * i + a]) << k;
+      for (int a = 0; a < 4; ++a) ASSERT_EQ(s.rotations[4 * k + a], original.rotations[4 * i + a]) << k;
+      for (int a = 0; a < 3; ++a) ASSERT_EQ(s.normals[3 * k + a], original.normals[3 * i + a]) << k;
+      uint32_t tag = 0;
+      std::memcpy(&tag, s.extras[0].data.data() + 4 * k, 4);
+      ASSERT_EQ(tag, uint32_t(i) * 7u + 1u) << k;
+    }
+    // Values per Gaussian of the reordered scene go back to the file's order.
+    std::vector<float> opacity_back = space.to_file_order(s.opacity);
+    EXPECT_EQ(opacity_back, original.opacity);
+    EXPECT_EQ(space.to_space_order(original.opacity), s.opacity);
+    EXPECT_THROW(space.to_file_order(std::vector<int>(5)), Error);
+    std::vector<bool> flags(s.size());
+    for (size_t k = 0; k < s.size(); ++k) flags[k] = s.opacity[k] < 100.f;  // the file's first 100
+    const std::vector<bool> back = space.to_file_order(flags);
+    for (size_t i = 0; i < back.size(); ++i) ASSERT_EQ(back[i], i < 100) << i;
   }
-  // Values per Gaussian of the reordered scene go back to the file's order.
-  std::vector<float> opacity_back = space.to_file_order(s.opacity);
-  EXPECT_EQ(opacity_back, original.opacity);
-  EXPECT_EQ(space.to_space_order(original.opacity), s.opacity);
-  EXPECT_THROW(space.to_file_order(std::vector<int>(5)), Error);
-  std::vector<bool> flags(s.size());
-  for (size_t k = 0; k < s.size(); ++k) flags[k] = s.opacity[k] < 100.f;  // the file's first 100
-  const std::vector<bool> back = space.to_file_order(flags);
-  for (size_t i = 0; i < back.size(); ++i) ASSERT_EQ(back[i], i < 100) << i;
 }
 
 TEST(SpatialOrder, RejectsAnOrderThatIsNotAPermutation) {
