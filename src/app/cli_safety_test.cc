@@ -11,7 +11,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <random>
 
 #include "app/demo_scene.h"
 #include "core/selection.h"
@@ -163,18 +162,10 @@ TEST(CliSafety, ASelectionFileNamesTheGaussiansInTheOrderOfTheScenesFile) {
   o.height = 240;
   o.density = 0.3f;
   o.sh_degree = 0;
-  const DemoScene d = make_demo_scene(o);
-  std::vector<size_t> order(d.labels.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::mt19937 rng(11);
-  std::shuffle(order.begin(), order.end(), rng);
-  GaussianScene scattered;
-  scattered.sh_degree = d.bundle.gaussians.sh_degree;
-  std::vector<int> labels;
-  for (size_t i : order) {
-    scattered.append_from(d.bundle.gaussians, i);
-    labels.push_back(d.labels[i]);
-  }
+  DemoScene d = make_demo_scene(o);
+  scatter_gaussian_order(d, 11);
+  const GaussianScene& scattered = d.bundle.gaussians;
+  const std::vector<int>& labels = d.labels;
   fs::create_directories(root / "scene" / "images");
   write_scene_dir((root / "scene").string(), scattered, d.bundle.cameras);
   for (const Camera& c : d.bundle.cameras)

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
+#include <random>
 
 #include "core/random.h"
 #include "core/sh.h"
@@ -126,6 +127,22 @@ std::vector<bool> demo_object_mask(const DemoScene& demo, int object) {
   std::vector<bool> m(demo.labels.size());
   for (size_t i = 0; i < m.size(); ++i) m[i] = demo.labels[i] == object;
   return m;
+}
+
+void scatter_gaussian_order(DemoScene& demo, uint64_t seed) {
+  std::vector<size_t> order(demo.bundle.gaussians.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::mt19937_64 rng(seed);
+  std::shuffle(order.begin(), order.end(), rng);
+  GaussianScene scattered;
+  scattered.sh_degree = demo.bundle.gaussians.sh_degree;
+  std::vector<int> labels(order.size());
+  for (size_t i = 0; i < order.size(); ++i) {
+    scattered.append_from(demo.bundle.gaussians, order[i]);
+    labels[i] = demo.labels[order[i]];
+  }
+  demo.bundle.gaussians = std::move(scattered);
+  demo.labels = std::move(labels);
 }
 
 bool demo_click(const DemoScene& demo, int object, int& camera, double& x, double& y, int first_camera) {

@@ -3,6 +3,7 @@
 // aligned flat Gaussians, and orbit cameras around them. World z points up.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,10 @@ DemoScene make_demo_scene(const DemoSceneOptions& options = {});
 // Per-Gaussian membership of one object.
 std::vector<bool> demo_object_mask(const DemoScene& demo, int object);
 
+// Puts the Gaussians, and their labels, in a fixed random order (std::shuffle with
+// mt19937_64(seed)): a trained scene keeps its Gaussians in no spatial order, where the demo
+// builds them object by object.
+void scatter_gaussian_order(DemoScene& demo, uint64_t seed);
 // A click on an object: the first camera (from `first_camera` on, wrapping) in which the
 // object's centre projects inside the image and is what that pixel shows. Returns the
 // camera index and the pixel (SAM convention: pixel x, y), or false when none sees it.
