@@ -44,7 +44,7 @@ struct SpaceOrder {
   }
 };
 
-// spatial_order, then reorder: 0.7-0.9 s at 6M Gaussians on 2 cores; memory grows by 64
+// spatial_order, then reorder: 0.7-1.2 s at 6M Gaussians on 2 cores; memory grows by 64
 // bytes a Gaussian while the arrays move.
 SpaceOrder put_in_space_order(GaussianScene& scene);
 
