@@ -6,9 +6,10 @@
 // (SAM encoding reported apart; it runs for real, with a fresh cache), time per click,
 // resident memory of the views and peak RSS. The scene is written as a PLY and loaded
 // back the way every command loads one (io/gaussian_file.h): load time, and the load's
-// peak memory against the loaded scene's size; then put in space order, as `segment` and
-// `serve` do (core/spatial_order.h; the scene is made in a trained scene's scattered order). Peak RSS counts from that load on, split
-// into the part up to the first click (views built, one round) and the later clicks. A
+// peak memory against the loaded scene's size; then put in space order, as `segment` does
+// (core/spatial_order.h; the scene is made in a trained scene's scattered order). Peak RSS
+// counts from that load on, split into the part up to the first click (views built, one
+// round) and the later clicks. A
 // hash of the selection and of the vote sums after a click lets two builds be compared
 // for identical results; precision and recall against the clicked object's labels (over
 // the Gaussians the votes saw) say whether a changed result is better or worse.
@@ -286,7 +287,7 @@ void large_scene(benchmark::State& state, int max_side) {
   const double ms_load = ms_since(t0);
   const double load_peak_mb = status_mb("VmHWM:") - rss_before_load, loaded_mb = scene_mb(demo.bundle.gaussians);
   fs::remove(ply);
-  // As `segment` and `serve` do after loading: the Gaussians in space order.
+  // As `segment` does after loading: the Gaussians in space order.
   const bool sort_peak_apart = peak_from_load && reset_peak_rss();  // the load's peak is read above
   const double rss_before_sort = status_mb("VmRSS:");
   t0 = clock::now();

@@ -161,7 +161,7 @@ int run_eval_ablation(const Args& args) {
       for (const auto& t : fixture_tasks)
         if (!fixture_scenes.count(t.scene_dir)) {
           SceneBundle b = load_scene(t.scene_dir);
-          put_in_space_order(b.gaussians);  // as `segment` and `serve` work on it
+          put_in_space_order(b.gaussians);  // as `segment` works on it
           fixture_scenes.emplace(t.scene_dir, std::move(b));
         }
     }

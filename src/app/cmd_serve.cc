@@ -7,7 +7,6 @@
 #include "app/scene_args.h"
 #include "app/segment_args.h"
 #include "core/error.h"
-#include "core/spatial_order.h"
 #include "edit/colorize.h"
 #include "server/serve.h"
 
@@ -24,8 +23,6 @@ int run_serve(const std::vector<std::string>& argv) {
   Args args(argv, values, switches);
   if (args.has("photos")) throw Error("--photos: the app segments renders (edits change what the photos show)");
   SceneBundle bundle = load_scene_from_args(args);
-  // The app works on the Gaussians in space order (core/spatial_order.h), and saves them so.
-  put_in_space_order(bundle.gaussians);
   SegmentSetup setup = parse_segment_setup(args);
 
   server::ServeOptions o;

@@ -143,7 +143,7 @@ TaskResult evaluate_task(const EvalTask& task, std::shared_ptr<const models::Sam
                          const SessionOptions& so, const ViewOptions& vo, const std::string& views_spec,
                          const Progress& progress) {
   SceneBundle b = load_scene(task.scene_dir);
-  put_in_space_order(b.gaussians);  // as `segment` and `serve` work on it
+  put_in_space_order(b.gaussians);  // as `segment` works on it
   const Camera* cam = find_camera(b.cameras, task.view);
   if (!cam) throw Error(task.dir + "/prompts.json", "view '" + task.view + "' is not a camera of the scene");
   PipelineTimings timings;

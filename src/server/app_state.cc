@@ -5,7 +5,6 @@
 #include <filesystem>
 
 #include "core/error.h"
-#include "core/spatial_order.h"
 #include "io/image_io.h"
 #include "io/scene_loader.h"
 #include "server/app_error.h"
@@ -210,7 +209,6 @@ EditResult AppState::edit(const edit::EditOp& op, SceneSource source) {
       // The message names the file inside the data folder only.
       invalid(std::string("path: ") + e.what());
     }
-    put_in_space_order(other);  // as the app's own scene (cmd_serve.cc): appended, it lies in runs too
   }
   EditResult r = scene_.edit(op, op.kind == edit::EditKind::kCombine ? &other : nullptr);
   log_.note(r.label);
