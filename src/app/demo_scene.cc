@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
+#include <numeric>
 #include <random>
 
 #include "core/random.h"
 #include "core/sh.h"
+#include "core/spatial_order.h"
 #include "app/scene_builder.h"
 #include "render/rasterizer.h"
 
@@ -130,18 +132,13 @@ std::vector<bool> demo_object_mask(const DemoScene& demo, int object) {
 }
 
 void scatter_gaussian_order(DemoScene& demo, uint64_t seed) {
-  std::vector<size_t> order(demo.bundle.gaussians.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::vector<uint32_t> order(demo.bundle.gaussians.size());
+  std::iota(order.begin(), order.end(), 0u);
   std::mt19937_64 rng(seed);
   std::shuffle(order.begin(), order.end(), rng);
-  GaussianScene scattered;
-  scattered.sh_degree = demo.bundle.gaussians.sh_degree;
+  reorder(demo.bundle.gaussians, order);  // Gaussian order[k] goes k-th
   std::vector<int> labels(order.size());
-  for (size_t i = 0; i < order.size(); ++i) {
-    scattered.append_from(demo.bundle.gaussians, order[i]);
-    labels[i] = demo.labels[order[i]];
-  }
-  demo.bundle.gaussians = std::move(scattered);
+  for (size_t k = 0; k < order.size(); ++k) labels[k] = demo.labels[order[k]];
   demo.labels = std::move(labels);
 }
 

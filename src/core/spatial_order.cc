@@ -40,10 +40,8 @@ std::vector<uint32_t> spatial_order(const GaussianScene& scene) {
   // Temporaries in huge pages: the 4 KiB pages of ~150 MB at 6M Gaussians took ~0.5 s to fault in.
   ZeroedArray<uint64_t> keys(n), keys_out(n);
   ZeroedArray<uint32_t> sorted(n), sorted_out(n);
-  const size_t chunk = size_t(1) << 16;
-  parallel_for((n + chunk - 1) / chunk, 0, [&](int, size_t c) {
-    const size_t end = std::min(n, (c + 1) * chunk);
-    for (size_t i = c * chunk; i < end; ++i) {
+  parallel_chunks(n, kListGrain, 0, [&](size_t, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
       uint64_t code = 0;
       for (int a = 0; a < 3; ++a) {
         const double cell = (scene.positions[3 * i + a] - lo_axis[a]) * cells_per_unit[a];
@@ -102,21 +100,18 @@ void reorder(GaussianScene& scene, const std::vector<uint32_t>& order) {
   size_t widest = 0;
   for (const auto& a : arrays) widest = std::max(widest, std::min(kSlice, a.second));
   ZeroedArray<uint8_t> buffer(n * widest);  // huge pages: a fresh 4 KiB page faults at ~25 us here
-  const size_t chunk = size_t(1) << 15, chunks = (n + chunk - 1) / chunk;
   auto gather = [&](uint8_t* data, size_t row_bytes) {
     for (size_t offset = 0; offset < row_bytes; offset += kSlice) {
       const size_t width = std::min(kSlice, row_bytes - offset);
       const uint8_t* from = data + offset;
-      parallel_for(chunks, 0, [&](int, size_t c) {
-        const size_t end = std::min(n, (c + 1) * chunk);
-        for (size_t k = c * chunk; k < end; ++k) {
+      parallel_chunks(n, kListGrain, 0, [&](size_t, size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k) {
           if (k + kPrefetchAhead < end) __builtin_prefetch(from + size_t(order[k + kPrefetchAhead]) * row_bytes);
           std::memcpy(buffer.data() + k * width, from + size_t(order[k]) * row_bytes, width);
         }
       });
-      parallel_for(chunks, 0, [&](int, size_t c) {
-        const size_t end = std::min(n, (c + 1) * chunk);
-        for (size_t k = c * chunk; k < end; ++k) std::memcpy(data + k * row_bytes + offset, buffer.data() + k * width, width);
+      parallel_chunks(n, kListGrain, 0, [&](size_t, size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k) std::memcpy(data + k * row_bytes + offset, buffer.data() + k * width, width);
       });
     }
   };
