@@ -6,7 +6,8 @@
 // early hides that wait: a pass over 400k of 6M scattered centres 6.7-7.4 -> 3.8-4.1 ms; over
 // an index range, as the synthetic scenes' objects lie, it costs 0.61-0.65 -> 1.0 ms (Zen 5,
 // `build/bench/scene_bench --benchmark_filter=CentresThroughList`). A prefetch never faults
-// and changes no result.
+// and changes no result. (`segment` puts a loaded scene in space order, core/spatial_order.h,
+// where these lists read nearly in order; `serve` keeps the file's order.)
 #pragma once
 
 #include <cstddef>
