@@ -59,6 +59,7 @@ SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = o.click_by_click = o.negative_granularity = false;
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;
   o.whole_islands.enabled = o.negative_islands = o.beyond_part.band = o.beyond_part.whole = false;
+  o.apart.enabled = false;
   o.attached_parts.enabled = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
@@ -743,6 +744,13 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // Per Gaussian: how many views' depth layers or background gate set it aside from the target
   // this round (attached_parts.h).
   std::vector<uint8_t> set_aside;
+  // The views with the user's positive clicks, and their masks' votes before any gate
+  // (apart_islands.h).
+  std::vector<uint8_t> user_positive(V, 0);
+  if (o.apart.enabled)
+    for (const UserClick& c : next.clicks)
+      if (c.click.label == 1) user_positive[size_t(c.view)] = 1;
+  std::vector<ViewVotes> clicked_inside(V);
 
   // Votes of one view's mask (`mask`: vs.mask as an image at the view's resolution, built
   // once per view for inspection, votes, the background gate and the centre evidence),
@@ -758,6 +766,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     }
     vs.neutral = ViewVotes{};
     const std::vector<uint32_t> shown = vs.positive.index;  // before the gates move some to neutral
+    if (user_positive[k]) clicked_inside[k] = vs.positive;
     // The clicked pixels' rendered depths: where the target is in this view.
     BackgroundTarget target;
     target.selection = selection;
@@ -871,6 +880,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     fresh = unjudged;
     acc = VoteAccumulator(scene_.size());
     set_aside.clear();
+    for (ViewVotes& v : clicked_inside) v = ViewVotes{};
     band_ledger = BandLedger(scene_);
     live.reset(scene_.size(), {o.tau, min_weight, o.centre_rule, {o.whole_neutral, o.whole_min_share}}, &excluded_);
     first = true;
@@ -1174,6 +1184,34 @@ RoundReport Session::run_round(State& next, const State& prev) {
     rep.whole_islands = drop_whole_islands(next.selection, acc, scene_, neighbours(), o.tau, min_weight,
                                            o.centre_rule, o.whole_islands, o.threads);
   }
+  // The selected Gaussians a click's pixel shows (negative_islands.h).
+  auto selected_at_click = [&](const UserClick& c) {
+    return selected_at_pixel(views_[size_t(c.view)].frame, next.selection, int(std::floor(c.click.x)),
+                             int(std::floor(c.click.y)), o.threads);
+  };
+  if (o.apart.enabled) {
+    TimeInto timed{part.decide};
+    std::vector<ViewVotes> totals;
+    std::vector<size_t> voted;
+    for (size_t k = 0; k < V; ++k)
+      if (user_positive[k] && next.views[k].status == ViewStatus::Accepted && !clicked_inside[k].index.empty())
+        voted.push_back(k);
+    totals.resize(voted.size());
+    std::vector<ClickedViewVotes> clicked;
+    for (size_t i = 0; i < voted.size(); ++i) {
+      views_[voted[i]].all_votes.unpack(totals[i], o.threads);
+      clicked.push_back({&clicked_inside[voted[i]], &totals[i]});
+    }
+    std::vector<uint32_t> at_clicks;
+    for (const UserClick& c : next.clicks)
+      if (c.click.label == 1) {
+        const std::vector<uint32_t> shown = selected_at_click(c);
+        at_clicks.insert(at_clicks.end(), shown.begin(), shown.end());
+      }
+    rep.apart_islands = drop_apart_islands(next.selection, scene_, neighbours(), clicked, at_clicks, min_weight, o.apart,
+                                           o.whole_islands, o.threads)
+                            .removed;
+  }
   const bool any_negative =
       std::any_of(next.clicks.begin(), next.clicks.end(), [](const UserClick& c) { return c.click.label == 0; });
   // Not in a round with a negative click: the user is taking things out, and a minority of
@@ -1192,8 +1230,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     std::vector<uint32_t> positive_seeds;
     std::vector<std::vector<uint32_t>> negative_seeds;
     for (const UserClick& c : next.clicks) {
-      std::vector<uint32_t> shown = selected_at_pixel(views_[size_t(c.view)].frame, next.selection,
-                                                      int(std::floor(c.click.x)), int(std::floor(c.click.y)), o.threads);
+      std::vector<uint32_t> shown = selected_at_click(c);
       if (c.click.label == 1) positive_seeds.insert(positive_seeds.end(), shown.begin(), shown.end());
       else negative_seeds.push_back(std::move(shown));
     }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "models/sam.h"
+#include "segment/apart_islands.h"
 #include "segment/background_gate.h"
 #include "segment/coherence.h"
 #include "segment/depth_layers.h"
@@ -120,6 +121,11 @@ struct SessionOptions {
   // ... and what it alone selects must touch, through selected Gaussians, what the votes
   // select on their own (whole_islands.h): a neighbour SAM merged in some views stands apart.
   IslandOptions whole_islands{true};
+  // A set of selected Gaussians that a clicked view sees outside its mask, as large as a
+  // neighbour and apart in 3D from what the clicked pixel shows, leaves (apart_islands.h): a
+  // neighbour most other views' masks merged with the object (a playpen beside a climbing
+  // triangle).
+  ApartOptions apart{true};
   // What a minority of the views masks with the object (a broom's bristles, a kettle's
   // spout) joins the selection where touching Gaussians attach it (attached_parts.h); not
   // in a round with a negative click, where it would put back what the user takes out.
@@ -242,6 +248,7 @@ struct RoundReport {
   size_t selected = 0;
   bool larger_granularity = false;  // the first view voted with a larger candidate than SAM's choice
   size_t whole_islands = 0;         // Gaussians the whole rule alone selected, apart from the rest (dropped)
+  size_t apart_islands = 0;         // Gaussians a clicked view left out, apart from what it masks (dropped)
   size_t attached_parts = 0;        // Gaussians added as parts a minority of the views masks (attached_parts.h)
   size_t negative_islands = 0;      // Gaussians negative clicks took out as islands apart from the positive ones
   bool duplicate = false;  // the click repeated an earlier one: nothing changed

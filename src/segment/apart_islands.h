@@ -1,0 +1,69 @@
+// What the clicked view leaves out and 3D sets apart. Most views' SAM masks may take in a
+// neighbour standing beside the clicked object (a playpen beside a climbing triangle, both of
+// wood-pale bars): they vote for it, and the clicked view, whose mask is the object alone,
+// leaves it open as part or whole (votes.h, WholeRule), so it is selected. The clicked view
+// is the one the user looked at, and 3D tells a neighbour from the rest of the object: the
+// rest of a chair touches its clicked back, the playpen stands apart from the triangle.
+// A set of selected Gaussians joined by chains of touching Gaussians (whole_islands.h) that
+// holds nothing a positive click's pixel shows, while a clicked view sees a real share of it
+// outside its mask, leaves the selection.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/centre_index.h"
+#include "core/scene.h"
+#include "segment/votes.h"
+#include "segment/whole_islands.h"
+
+namespace isegman::segment {
+
+struct ApartOptions {
+  bool enabled = false;
+  // A Gaussian is inside a clicked view's mask when the mask holds at least this share of
+  // what it blends in the view, and seen outside it when the mask holds at most
+  // outside_share of it (and it blends at least the vote's minimum weight there).
+  double inside_share = 0.5;
+  double outside_share = 0.1;
+  // A set leaves only when a clicked view sees at least this share of its Gaussians outside
+  // its mask: a set the clicked view barely glimpses (a part only the other views show) is
+  // the other views' to decide.
+  double min_seen_share = 0.25;
+  // Gaussians larger than this many times the selection's median scale neither link nor
+  // leave: a few broad flat Gaussians of a floor the selection took join all that stands on it.
+  double max_link_scale = 4;
+  // A set leaves only when it holds at least this share of as many selected Gaussians as
+  // the clicked views' masks hold: a neighbour of the object's own kind of size. A small set
+  // apart may be a part of the object that touches nothing selected (a lamp's stem reaching
+  // up into its shade, 460 Gaussians against the shade's 2,000).
+  double min_size_share = 0.5;
+};
+
+// One view with a positive click: the votes of its mask before any gate (the pixels the user's
+// mask covers) and its all-pixel votes. Both ascending by Gaussian, as the rasteriser's
+// contribution lists are.
+struct ClickedViewVotes {
+  const ViewVotes* inside = nullptr;
+  const ViewVotes* total = nullptr;
+};
+
+struct ApartReport {
+  size_t removed = 0;  // Gaussians that left the selection
+  int islands = 0;     // sets that left
+};
+
+// Removes from `selection` every set of selected Gaussians, joined by chains of touching
+// selected Gaussians (`link`, as whole islands; Gaussians over max_link_scale x the median
+// neither link nor leave), that holds none of `click_gaussians` (what the positive clicks'
+// pixels show: negative_islands.h, selected_at_pixel) and of which some clicked view sees at
+// least min_seen_share of the Gaussians outside its mask. `min_weight`: the weight (in
+// pixels) a Gaussian must blend in a view to count as seen there. `index` is built over
+// `scene`. Nothing leaves without clicked views or click Gaussians.
+ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene& scene, const CentreIndex& index,
+                               const std::vector<ClickedViewVotes>& clicked,
+                               const std::vector<uint32_t>& click_gaussians, double min_weight,
+                               const ApartOptions& options, const IslandOptions& link, int threads = 1);
+
+}  // namespace isegman::segment

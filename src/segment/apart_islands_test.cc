@@ -1,0 +1,150 @@
+#include "segment/apart_islands.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace isegman::segment {
+namespace {
+
+// Gaussians of scale 1 cm in a row along x: the clicked object (0..9, x = 0..9 cm) and,
+// 20 cm apart, a neighbour (10..19, x = 30..39 cm); with `bridge`, selected Gaussians in the
+// gap (20..39) join the two, of scale `bridge_scale`.
+GaussianScene row(bool bridge, float bridge_scale = 0.01f) {
+  GaussianScene s;
+  auto add = [&](float x, float scale) {
+    s.positions.insert(s.positions.end(), {x, 0.f, 0.f});
+    s.scales.insert(s.scales.end(), {std::log(scale), std::log(scale), std::log(0.002f)});
+    s.rotations.insert(s.rotations.end(), {1, 0, 0, 0});
+    s.opacity.push_back(0);
+  };
+  for (int i = 0; i < 20; ++i) add(0.01f * float(i < 10 ? i : i + 20), 0.01f);
+  if (bridge)
+    for (int i = 0; i < 20; ++i) add(0.01f * float(10 + i), bridge_scale);
+  return s;
+}
+
+// A clicked view's votes: every Gaussian in `seen` blends weight 1, those in `masked` wholly
+// inside the mask.
+struct View {
+  ViewVotes inside, total;
+  View(const std::vector<uint32_t>& seen, const std::vector<uint32_t>& masked) {
+    for (uint32_t g : seen) {
+      total.index.push_back(g);
+      total.weight.push_back(int64_t(kVoteScale));
+      if (std::count(masked.begin(), masked.end(), g)) {
+        inside.index.push_back(g);
+        inside.weight.push_back(int64_t(kVoteScale));
+      }
+    }
+  }
+  ClickedViewVotes votes() const { return {&inside, &total}; }
+};
+
+std::vector<uint32_t> range(uint32_t a, uint32_t b) {
+  std::vector<uint32_t> out;
+  for (uint32_t g = a; g < b; ++g) out.push_back(g);
+  return out;
+}
+
+ApartOptions on() {
+  ApartOptions o;
+  o.enabled = true;
+  return o;
+}
+
+TEST(ApartIslands, ANeighbourTheClickedViewLeavesOutLeavesWhenItStandsApart) {
+  const GaussianScene s = row(false);
+  const CentreIndex index(s);
+  // The clicked view sees both; its mask holds the object and, as a mask's edge may, two of
+  // the neighbour's Gaussians.
+  const View view(range(0, 20), {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11});
+  std::vector<bool> selection(s.size(), true);
+  const ApartReport r = drop_apart_islands(selection, s, index, {view.votes()}, {4}, 0.05, on(), IslandOptions{});
+  std::printf("[ apart islands ] %zu of %zu left, in %d set(s)\n", r.removed, s.size(), r.islands);
+  EXPECT_EQ(r.removed, 10u);
+  EXPECT_EQ(r.islands, 1);
+  for (size_t i = 0; i < s.size(); ++i) EXPECT_EQ(selection[i], i < 10) << i;
+  // Switched off, or without a click's Gaussians to tell the object by, nothing leaves.
+  std::vector<bool> all(s.size(), true);
+  EXPECT_EQ(drop_apart_islands(all, s, index, {view.votes()}, {4}, 0.05, ApartOptions{}, IslandOptions{}).removed, 0u);
+  EXPECT_EQ(drop_apart_islands(all, s, index, {view.votes()}, {}, 0.05, on(), IslandOptions{}).removed, 0u);
+  EXPECT_EQ(std::count(all.begin(), all.end(), true), 20);
+}
+
+TEST(ApartIslands, WhatTouchesTheClickedObjectStays) {
+  // The rest of an object (a chair's seat below its clicked back) joins it through touching
+  // Gaussians: the clicked view's mask leaving it out says nothing then.
+  const GaussianScene s = row(true);
+  const CentreIndex index(s);
+  const View view(range(0, 40), range(0, 10));
+  std::vector<bool> selection(s.size(), true);
+  EXPECT_EQ(drop_apart_islands(selection, s, index, {view.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 0u);
+  EXPECT_EQ(std::count(selection.begin(), selection.end(), true), 40);
+}
+
+TEST(ApartIslands, ASmallSetApartMayBeAPartOfTheObject) {
+  // Three Gaussians apart from the object (a lamp's stem below its shade, touching nothing
+  // selected): under min_size_share of the ten the mask holds, they stay. The neighbour of
+  // ten leaves.
+  GaussianScene s = row(false);
+  for (int i = 0; i < 3; ++i) {
+    s.positions.insert(s.positions.end(), {0.05f, 0.f, -0.3f - 0.01f * float(i)});
+    s.scales.insert(s.scales.end(), {std::log(0.01f), std::log(0.01f), std::log(0.002f)});
+    s.rotations.insert(s.rotations.end(), {1, 0, 0, 0});
+    s.opacity.push_back(0);
+  }
+  const CentreIndex index(s);
+  const View view(range(0, 23), range(0, 10));
+  std::vector<bool> selection(s.size(), true);
+  EXPECT_EQ(drop_apart_islands(selection, s, index, {view.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 10u);
+  for (size_t i = 0; i < s.size(); ++i) EXPECT_EQ(selection[i], i < 10 || i >= 20) << i;
+}
+
+TEST(ApartIslands, BroadGaussiansDoNotJoin) {
+  // The gap filled by a few broad flat Gaussians (a floor the selection took): they link
+  // nothing, and stay themselves; the neighbour leaves.
+  GaussianScene s = row(false);
+  auto add = [&](float x) {
+    s.positions.insert(s.positions.end(), {x, 0.f, -0.01f});
+    s.scales.insert(s.scales.end(), {std::log(0.12f), std::log(0.12f), std::log(0.002f)});
+    s.rotations.insert(s.rotations.end(), {1, 0, 0, 0});
+    s.opacity.push_back(0);
+  };
+  add(0.12f);
+  add(0.22f);
+  const CentreIndex index(s);
+  const View view(range(0, 22), range(0, 10));
+  std::vector<bool> selection(s.size(), true);
+  EXPECT_EQ(drop_apart_islands(selection, s, index, {view.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 10u);
+  for (size_t i = 0; i < s.size(); ++i) EXPECT_EQ(selection[i], i < 10 || i >= 20) << i;
+  // As broad as the rest, they join the two, and nothing leaves.
+  ApartOptions any_size = on();
+  any_size.max_link_scale = 100;
+  std::vector<bool> all(s.size(), true);
+  EXPECT_EQ(drop_apart_islands(all, s, index, {view.votes()}, {4}, 0.05, any_size, IslandOptions{}).removed, 0u);
+}
+
+TEST(ApartIslands, ASetTheClickedViewsBarelySeeIsNotTheirsToJudge) {
+  // The clicked view sees 2 of the neighbour's 10 Gaussians (a part the other views show):
+  // under min_seen_share, it stays. A second clicked view that sees it all takes it out.
+  const GaussianScene s = row(false);
+  const CentreIndex index(s);
+  const View glimpse(range(0, 12), range(0, 10));
+  std::vector<bool> selection(s.size(), true);
+  EXPECT_EQ(drop_apart_islands(selection, s, index, {glimpse.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 0u);
+  // Too faint to count as seen: weights under min_weight.
+  EXPECT_EQ(drop_apart_islands(selection, s, index, {View(range(0, 20), range(0, 10)).votes()}, {4}, 2.0, on(),
+                               IslandOptions{})
+                .removed,
+            0u);
+  const View whole(range(0, 20), range(0, 10));
+  EXPECT_EQ(drop_apart_islands(selection, s, index, {glimpse.votes(), whole.votes()}, {4}, 0.05, on(), IslandOptions{})
+                .removed,
+            10u);
+}
+
+}  // namespace
+}  // namespace isegman::segment
