@@ -1,6 +1,9 @@
 #include "segment/apart_islands.h"
 
 #include <algorithm>
+#include <cmath>
+#include <unordered_map>
+#include <utility>
 
 #include "core/zeroed_array.h"
 
@@ -13,12 +16,75 @@ constexpr size_t kMaxClickedViews = 8;
 
 enum Flood : uint8_t { kUnvisited = 0, kJoined = 1, kSettled = 2 };
 
+// The touch rule of TouchingGaussians (whole_islands.h) among `members` alone, in a hash grid
+// of cells one largest link wide: a flood's neighbour search reads the members near it, not
+// every centre of the scene there (the wall behind the object), which took 15-20 us a search.
+class LinkGrid {
+ public:
+  LinkGrid(const GaussianScene& scene, const std::vector<uint32_t>& members, double link_sigmas)
+      : scene_(scene), link_(link_sigmas) {
+    if (members.empty()) return;
+    std::vector<float> scales;
+    scales.reserve(members.size());
+    for (uint32_t g : members) scales.push_back(scene.largest_scale(g));
+    const size_t q = std::min(scales.size() - 1, size_t(0.95 * double(scales.size())));
+    std::nth_element(scales.begin(), scales.begin() + std::ptrdiff_t(q), scales.end());
+    reach_ = scales[q];
+    cell_ = std::max(2 * link_ * reach_, 1e-9);
+    std::vector<std::pair<uint64_t, uint32_t>> keyed;
+    keyed.reserve(members.size());
+    for (uint32_t g : members) {
+      const Vec3 p = scene.position(g);
+      keyed.push_back({key(cell_of(p.x), cell_of(p.y), cell_of(p.z)), g});
+    }
+    std::sort(keyed.begin(), keyed.end());
+    sorted_.reserve(keyed.size());
+    for (size_t i = 0; i < keyed.size(); ++i) {
+      if (i == 0 || keyed[i].first != keyed[i - 1].first) cells_[keyed[i].first] = {uint32_t(i), uint32_t(i)};
+      cells_[keyed[i].first].second = uint32_t(i + 1);
+      sorted_.push_back(keyed[i].second);
+    }
+  }
+  // f(j) for every member j != g that touches g (g need not be a member).
+  template <class F>
+  void for_each(uint32_t g, F&& f) const {
+    if (sorted_.empty()) return;
+    const double sg = scene_.largest_scale(g), r = link_ * (sg + reach_);
+    const Vec3 p = scene_.position(g);
+    for (int64_t z = cell_of(p.z - r); z <= cell_of(p.z + r); ++z)
+      for (int64_t y = cell_of(p.y - r); y <= cell_of(p.y + r); ++y)
+        for (int64_t x = cell_of(p.x - r); x <= cell_of(p.x + r); ++x) {
+          const auto it = cells_.find(key(x, y, z));
+          if (it == cells_.end()) continue;
+          for (uint32_t i = it->second.first; i < it->second.second; ++i) {
+            const uint32_t j = sorted_[i];
+            if (j == g) continue;
+            const Vec3 d = scene_.position(j) - p;
+            const double d2 = d.x * d.x + d.y * d.y + d.z * d.z;
+            const double l = link_ * (sg + scene_.largest_scale(j));
+            if (d2 <= r * r && d2 <= l * l) f(j);
+          }
+        }
+  }
+
+ private:
+  int64_t cell_of(double v) const { return int64_t(std::floor(v / cell_)); }
+  static uint64_t key(int64_t x, int64_t y, int64_t z) {
+    const uint64_t m = (uint64_t(1) << 21) - 1;  // 21 bits an axis, wrapping: a shared key only costs a distance test
+    return (uint64_t(x) & m) | ((uint64_t(y) & m) << 21) | ((uint64_t(z) & m) << 42);
+  }
+  const GaussianScene& scene_;
+  double link_, reach_ = 0, cell_ = 1;
+  std::vector<uint32_t> sorted_;
+  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> cells_;
+};
+
 }  // namespace
 
-ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene& scene, const CentreIndex& index,
+ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene& scene,
                                const std::vector<ClickedViewVotes>& clicked,
                                const std::vector<uint32_t>& click_gaussians, double min_weight,
-                               const ApartOptions& options, const IslandOptions& link, int threads) {
+                               const ApartOptions& options, const IslandOptions& link) {
   ApartReport out;
   if (!options.enabled || clicked.empty() || click_gaussians.empty()) return out;
   const size_t n = selection.size();
@@ -48,10 +114,15 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
       }
     }
   }
-  if (seeds.empty()) return out;
+  // A set leaves only with at least min_size_share x in_masks Gaussians, min_seen_share of
+  // them seen outside one clicked view's mask, all of them seeds: with fewer seeds than that
+  // no set can, and the floods (a neighbour search per Gaussian) are skipped.
+  if (seeds.empty() || double(seeds.size()) < options.min_seen_share * options.min_size_share * double(in_masks))
+    return out;
   // Large Gaussians do not link: a few broad flat ones of the floor the selection took join
   // everything standing on it.
   std::vector<bool> linkable = selection;
+  std::vector<uint32_t> members;  // the linkable Gaussians
   {
     std::vector<uint32_t> selected;
     std::vector<float> scales;
@@ -63,10 +134,12 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
     std::vector<float> sorted = scales;
     std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
     const double limit = options.max_link_scale * sorted[sorted.size() / 2];
-    for (size_t i = 0; i < selected.size(); ++i)
+    for (size_t i = 0; i < selected.size(); ++i) {
       if (scales[i] > limit) linkable[selected[i]] = false;
+      else members.push_back(selected[i]);
+    }
   }
-  const TouchingGaussians touching(scene, index, linkable, link.link_sigmas, threads);
+  const LinkGrid touching(scene, members, link.link_sigmas);
   ZeroedArray<uint8_t> state(n);
   std::vector<uint32_t> frontier, leave;
   for (uint32_t seed : seeds) {

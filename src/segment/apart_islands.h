@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/centre_index.h"
 #include "core/scene.h"
 #include "segment/votes.h"
 #include "segment/whole_islands.h"
@@ -57,13 +56,14 @@ struct ApartReport {
 // Removes from `selection` every set of selected Gaussians, joined by chains of touching
 // selected Gaussians (`link`, as whole islands; Gaussians over max_link_scale x the median
 // neither link nor leave), that holds none of `click_gaussians` (what the positive clicks'
-// pixels show: negative_islands.h, selected_at_pixel) and of which some clicked view sees at
-// least min_seen_share of the Gaussians outside its mask. `min_weight`: the weight (in
-// pixels) a Gaussian must blend in a view to count as seen there. `index` is built over
-// `scene`. Nothing leaves without clicked views or click Gaussians.
-ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene& scene, const CentreIndex& index,
+// pixels show: negative_islands.h, selected_at_pixel), of which some clicked view sees at
+// least min_seen_share of the Gaussians outside its mask, and which holds at least
+// min_size_share as many Gaussians as the clicked masks. `min_weight`: the weight (in pixels)
+// a Gaussian must blend in a view to count as seen there. Nothing leaves without clicked
+// views or click Gaussians.
+ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene& scene,
                                const std::vector<ClickedViewVotes>& clicked,
                                const std::vector<uint32_t>& click_gaussians, double min_weight,
-                               const ApartOptions& options, const IslandOptions& link, int threads = 1);
+                               const ApartOptions& options, const IslandOptions& link);
 
 }  // namespace isegman::segment

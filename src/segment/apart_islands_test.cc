@@ -57,20 +57,19 @@ ApartOptions on() {
 
 TEST(ApartIslands, ANeighbourTheClickedViewLeavesOutLeavesWhenItStandsApart) {
   const GaussianScene s = row(false);
-  const CentreIndex index(s);
   // The clicked view sees both; its mask holds the object and, as a mask's edge may, two of
   // the neighbour's Gaussians.
   const View view(range(0, 20), {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11});
   std::vector<bool> selection(s.size(), true);
-  const ApartReport r = drop_apart_islands(selection, s, index, {view.votes()}, {4}, 0.05, on(), IslandOptions{});
+  const ApartReport r = drop_apart_islands(selection, s, {view.votes()}, {4}, 0.05, on(), IslandOptions{});
   std::printf("[ apart islands ] %zu of %zu left, in %d set(s)\n", r.removed, s.size(), r.islands);
   EXPECT_EQ(r.removed, 10u);
   EXPECT_EQ(r.islands, 1);
   for (size_t i = 0; i < s.size(); ++i) EXPECT_EQ(selection[i], i < 10) << i;
   // Switched off, or without a click's Gaussians to tell the object by, nothing leaves.
   std::vector<bool> all(s.size(), true);
-  EXPECT_EQ(drop_apart_islands(all, s, index, {view.votes()}, {4}, 0.05, ApartOptions{}, IslandOptions{}).removed, 0u);
-  EXPECT_EQ(drop_apart_islands(all, s, index, {view.votes()}, {}, 0.05, on(), IslandOptions{}).removed, 0u);
+  EXPECT_EQ(drop_apart_islands(all, s, {view.votes()}, {4}, 0.05, ApartOptions{}, IslandOptions{}).removed, 0u);
+  EXPECT_EQ(drop_apart_islands(all, s, {view.votes()}, {}, 0.05, on(), IslandOptions{}).removed, 0u);
   EXPECT_EQ(std::count(all.begin(), all.end(), true), 20);
 }
 
@@ -78,10 +77,9 @@ TEST(ApartIslands, WhatTouchesTheClickedObjectStays) {
   // The rest of an object (a chair's seat below its clicked back) joins it through touching
   // Gaussians: the clicked view's mask leaving it out says nothing then.
   const GaussianScene s = row(true);
-  const CentreIndex index(s);
   const View view(range(0, 40), range(0, 10));
   std::vector<bool> selection(s.size(), true);
-  EXPECT_EQ(drop_apart_islands(selection, s, index, {view.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 0u);
+  EXPECT_EQ(drop_apart_islands(selection, s, {view.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 0u);
   EXPECT_EQ(std::count(selection.begin(), selection.end(), true), 40);
 }
 
@@ -96,10 +94,9 @@ TEST(ApartIslands, ASmallSetApartMayBeAPartOfTheObject) {
     s.rotations.insert(s.rotations.end(), {1, 0, 0, 0});
     s.opacity.push_back(0);
   }
-  const CentreIndex index(s);
   const View view(range(0, 23), range(0, 10));
   std::vector<bool> selection(s.size(), true);
-  EXPECT_EQ(drop_apart_islands(selection, s, index, {view.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 10u);
+  EXPECT_EQ(drop_apart_islands(selection, s, {view.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 10u);
   for (size_t i = 0; i < s.size(); ++i) EXPECT_EQ(selection[i], i < 10 || i >= 20) << i;
 }
 
@@ -115,33 +112,31 @@ TEST(ApartIslands, BroadGaussiansDoNotJoin) {
   };
   add(0.12f);
   add(0.22f);
-  const CentreIndex index(s);
   const View view(range(0, 22), range(0, 10));
   std::vector<bool> selection(s.size(), true);
-  EXPECT_EQ(drop_apart_islands(selection, s, index, {view.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 10u);
+  EXPECT_EQ(drop_apart_islands(selection, s, {view.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 10u);
   for (size_t i = 0; i < s.size(); ++i) EXPECT_EQ(selection[i], i < 10 || i >= 20) << i;
   // As broad as the rest, they join the two, and nothing leaves.
   ApartOptions any_size = on();
   any_size.max_link_scale = 100;
   std::vector<bool> all(s.size(), true);
-  EXPECT_EQ(drop_apart_islands(all, s, index, {view.votes()}, {4}, 0.05, any_size, IslandOptions{}).removed, 0u);
+  EXPECT_EQ(drop_apart_islands(all, s, {view.votes()}, {4}, 0.05, any_size, IslandOptions{}).removed, 0u);
 }
 
 TEST(ApartIslands, ASetTheClickedViewsBarelySeeIsNotTheirsToJudge) {
   // The clicked view sees 2 of the neighbour's 10 Gaussians (a part the other views show):
   // under min_seen_share, it stays. A second clicked view that sees it all takes it out.
   const GaussianScene s = row(false);
-  const CentreIndex index(s);
   const View glimpse(range(0, 12), range(0, 10));
   std::vector<bool> selection(s.size(), true);
-  EXPECT_EQ(drop_apart_islands(selection, s, index, {glimpse.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 0u);
+  EXPECT_EQ(drop_apart_islands(selection, s, {glimpse.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 0u);
   // Too faint to count as seen: weights under min_weight.
-  EXPECT_EQ(drop_apart_islands(selection, s, index, {View(range(0, 20), range(0, 10)).votes()}, {4}, 2.0, on(),
+  EXPECT_EQ(drop_apart_islands(selection, s, {View(range(0, 20), range(0, 10)).votes()}, {4}, 2.0, on(),
                                IslandOptions{})
                 .removed,
             0u);
   const View whole(range(0, 20), range(0, 10));
-  EXPECT_EQ(drop_apart_islands(selection, s, index, {glimpse.votes(), whole.votes()}, {4}, 0.05, on(), IslandOptions{})
+  EXPECT_EQ(drop_apart_islands(selection, s, {glimpse.votes(), whole.votes()}, {4}, 0.05, on(), IslandOptions{})
                 .removed,
             10u);
 }

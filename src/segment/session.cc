@@ -1208,9 +1208,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
         const std::vector<uint32_t> shown = selected_at_click(c);
         at_clicks.insert(at_clicks.end(), shown.begin(), shown.end());
       }
-    rep.apart_islands = drop_apart_islands(next.selection, scene_, neighbours(), clicked, at_clicks, min_weight, o.apart,
-                                           o.whole_islands, o.threads)
-                            .removed;
+    rep.apart_islands =
+        drop_apart_islands(next.selection, scene_, clicked, at_clicks, min_weight, o.apart, o.whole_islands).removed;
   }
   const bool any_negative =
       std::any_of(next.clicks.begin(), next.clicks.end(), [](const UserClick& c) { return c.click.label == 0; });
