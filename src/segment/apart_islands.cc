@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <unordered_map>
 #include <utility>
 
@@ -13,8 +14,10 @@ namespace {
 
 // Views past this many (8 bits a Gaussian) are not read: a user gives a few positive clicks.
 constexpr size_t kMaxClickedViews = 8;
+// A broad Gaussian is not followed when its search would read more grid cells than this.
+constexpr int64_t kMaxBroadCells = 512;
 
-enum Flood : uint8_t { kUnvisited = 0, kJoined = 1, kSettled = 2 };
+enum Flood : uint8_t { kUnvisited = 0, kJoined = 1, kSettled = 2, kLeaving = 3 };
 
 // The touch rule of TouchingGaussians (whole_islands.h) among `members` alone, in a hash grid
 // of cells one largest link wide: a flood's neighbour search reads the members near it, not
@@ -45,12 +48,16 @@ class LinkGrid {
       sorted_.push_back(keyed[i].second);
     }
   }
-  // f(j) for every member j != g that touches g (g need not be a member).
+  // f(j) for every member j != g that touches g (g need not be a member). False, calling
+  // nothing, when g reaches over more than max_cells cells (a Gaussian far broader than
+  // the members: its search would read the grid cell by cell).
   template <class F>
-  void for_each(uint32_t g, F&& f) const {
-    if (sorted_.empty()) return;
+  bool for_each(uint32_t g, F&& f, int64_t max_cells = INT64_MAX) const {
+    if (sorted_.empty()) return true;
     const double sg = scene_.largest_scale(g), r = link_ * (sg + reach_);
     const Vec3 p = scene_.position(g);
+    const int64_t span = cell_of(p.x + r) - cell_of(p.x - r) + 1;
+    if (span > max_cells || span * span > max_cells / span) return false;
     for (int64_t z = cell_of(p.z - r); z <= cell_of(p.z + r); ++z)
       for (int64_t y = cell_of(p.y - r); y <= cell_of(p.y + r); ++y)
         for (int64_t x = cell_of(p.x - r); x <= cell_of(p.x + r); ++x) {
@@ -65,6 +72,7 @@ class LinkGrid {
             if (d2 <= r * r && d2 <= l * l) f(j);
           }
         }
+    return true;
   }
 
  private:
@@ -122,7 +130,7 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
   // Large Gaussians do not link: a few broad flat ones of the floor the selection took join
   // everything standing on it.
   std::vector<bool> linkable = selection;
-  std::vector<uint32_t> members;  // the linkable Gaussians
+  std::vector<uint32_t> members, broad;  // the linkable Gaussians, and the selected others
   {
     std::vector<uint32_t> selected;
     std::vector<float> scales;
@@ -135,8 +143,12 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
     std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
     const double limit = options.max_link_scale * sorted[sorted.size() / 2];
     for (size_t i = 0; i < selected.size(); ++i) {
-      if (scales[i] > limit) linkable[selected[i]] = false;
-      else members.push_back(selected[i]);
+      if (scales[i] > limit) {
+        linkable[selected[i]] = false;
+        broad.push_back(selected[i]);
+      } else {
+        members.push_back(selected[i]);
+      }
     }
   }
   const LinkGrid touching(scene, members, link.link_sigmas);
@@ -167,19 +179,24 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
       continue;
     }
     size_t seen_outside[kMaxClickedViews] = {};
-    size_t selected_in_set = 0;
-    for (uint32_t g : frontier) {
-      if (!selection[g]) continue;
-      ++selected_in_set;
-      for (size_t v = 0; v < views; ++v) seen_outside[v] += (outside[g] >> v) & 1u;
-    }
-    const size_t most = *std::max_element(seen_outside, seen_outside + views);
-    if (double(most) < options.min_seen_share * double(selected_in_set)) continue;
-    if (double(selected_in_set) < options.min_size_share * double(in_masks)) continue;
     for (uint32_t g : frontier)
-      if (selection[g]) leave.push_back(g);
+      for (size_t v = 0; v < views; ++v) seen_outside[v] += (outside[g] >> v) & 1u;
+    const size_t most = *std::max_element(seen_outside, seen_outside + views);
+    if (double(most) < options.min_seen_share * double(frontier.size())) continue;
+    if (double(frontier.size()) < options.min_size_share * double(in_masks)) continue;
+    for (uint32_t g : frontier) state[g] = kLeaving;
+    leave.insert(leave.end(), frontier.begin(), frontier.end());
     ++out.islands;
   }
+  // A broad Gaussian that touches what leaves and nothing that stays leaves with it: the
+  // floor's broad Gaussians under a neighbour.
+  if (!leave.empty() && options.broad_follow)
+    for (uint32_t g : broad) {
+      bool leaving = false, staying = false;
+      const bool read = touching.for_each(
+          g, [&](uint32_t j) { (state[j] == kLeaving ? leaving : staying) = true; }, kMaxBroadCells);
+      if (read && leaving && !staying) leave.push_back(g);
+    }
   // Only after every flood: the touch rule sees one selection throughout.
   for (uint32_t g : leave) selection[g] = false;
   out.removed = leave.size();

@@ -33,6 +33,9 @@ struct ApartOptions {
   // Gaussians larger than this many times the selection's median scale neither link nor
   // leave: a few broad flat Gaussians of a floor the selection took join all that stands on it.
   double max_link_scale = 4;
+  // ... but one that touches what leaves and nothing that stays leaves with it (the floor's
+  // broad Gaussians under a neighbour: the climbing triangle 65.3 -> 75.3).
+  bool broad_follow = true;
   // A set leaves only when it holds at least this share of as many selected Gaussians as
   // the clicked views' masks hold: a neighbour of the object's own kind of size. A small set
   // apart may be a part of the object that touches nothing selected (a lamp's stem reaching

@@ -101,25 +101,29 @@ TEST(ApartIslands, ASmallSetApartMayBeAPartOfTheObject) {
 }
 
 TEST(ApartIslands, BroadGaussiansDoNotJoin) {
-  // The gap filled by a few broad flat Gaussians (a floor the selection took): they link
-  // nothing, and stay themselves; the neighbour leaves.
+  // The gap filled by broad flat Gaussians, 5 cm to the others' 1 cm (a floor the selection
+  // took): they link nothing; the neighbour leaves, and with it the broad one that touches it
+  // and nothing that stays. The others stay.
   GaussianScene s = row(false);
-  auto add = [&](float x) {
+  for (float x : {0.12f, 0.17f, 0.22f, 0.27f}) {
     s.positions.insert(s.positions.end(), {x, 0.f, -0.01f});
-    s.scales.insert(s.scales.end(), {std::log(0.12f), std::log(0.12f), std::log(0.002f)});
+    s.scales.insert(s.scales.end(), {std::log(0.05f), std::log(0.05f), std::log(0.002f)});
     s.rotations.insert(s.rotations.end(), {1, 0, 0, 0});
     s.opacity.push_back(0);
-  };
-  add(0.12f);
-  add(0.22f);
-  const View view(range(0, 22), range(0, 10));
+  }
+  const View view(range(0, 24), range(0, 10));
   std::vector<bool> selection(s.size(), true);
-  EXPECT_EQ(drop_apart_islands(selection, s, {view.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 10u);
-  for (size_t i = 0; i < s.size(); ++i) EXPECT_EQ(selection[i], i < 10 || i >= 20) << i;
+  EXPECT_EQ(drop_apart_islands(selection, s, {view.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 11u);
+  for (size_t i = 0; i < s.size(); ++i) EXPECT_EQ(selection[i], i < 10 || (i >= 20 && i < 23)) << i;
+  // Not followed, the broad one under the neighbour stays.
+  ApartOptions stay = on();
+  stay.broad_follow = false;
+  std::vector<bool> all(s.size(), true);
+  EXPECT_EQ(drop_apart_islands(all, s, {view.votes()}, {4}, 0.05, stay, IslandOptions{}).removed, 10u);
   // As broad as the rest, they join the two, and nothing leaves.
   ApartOptions any_size = on();
   any_size.max_link_scale = 100;
-  std::vector<bool> all(s.size(), true);
+  all.assign(s.size(), true);
   EXPECT_EQ(drop_apart_islands(all, s, {view.votes()}, {4}, 0.05, any_size, IslandOptions{}).removed, 0u);
 }
 
