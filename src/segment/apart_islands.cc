@@ -156,7 +156,7 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
   std::vector<uint32_t> frontier, leave;
   for (uint32_t seed : seeds) {
     if (state[seed] != kUnvisited || inside[seed] || !linkable[seed]) continue;
-    // Flood the set breadth first over selected Gaussians; it ends early when it joins what
+    // Flood the set breadth first over the linkable Gaussians; it ends early when it joins what
     // a positive click's pixel shows (or a set that did), which for the rest of an object is
     // near. Not the mask: a clicked view's mask may spill onto the neighbour's near edge.
     frontier.assign(1, seed);

@@ -58,7 +58,7 @@ struct ApartReport {
 
 // Removes from `selection` every set of selected Gaussians, joined by chains of touching
 // selected Gaussians (`link`, as whole islands; Gaussians over max_link_scale x the median
-// neither link nor leave), that holds none of `click_gaussians` (what the positive clicks'
+// link nothing, and with broad_follow leave when they touch only what leaves), that holds none of `click_gaussians` (what the positive clicks'
 // pixels show: negative_islands.h, selected_at_pixel), of which some clicked view sees at
 // least min_seen_share of the Gaussians outside its mask, and which holds at least
 // min_size_share as many Gaussians as the clicked masks. `min_weight`: the weight (in pixels)
