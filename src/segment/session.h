@@ -248,7 +248,7 @@ struct RoundReport {
   size_t selected = 0;
   bool larger_granularity = false;  // the first view voted with a larger candidate than SAM's choice
   size_t whole_islands = 0;         // Gaussians the whole rule alone selected, apart from the rest (dropped)
-  size_t apart_islands = 0;         // Gaussians a clicked view left out, apart from what it masks (dropped)
+  size_t apart_islands = 0;         // Gaussians a clicked view left out, apart from what the click shows (dropped)
   size_t attached_parts = 0;        // Gaussians added as parts a minority of the views masks (attached_parts.h)
   size_t negative_islands = 0;      // Gaussians negative clicks took out as islands apart from the positive ones
   bool duplicate = false;  // the click repeated an earlier one: nothing changed
