@@ -30,9 +30,7 @@ class LinkGrid {
     std::vector<float> scales;
     scales.reserve(members.size());
     for (uint32_t g : members) scales.push_back(scene.largest_scale(g));
-    const size_t q = std::min(scales.size() - 1, size_t(0.95 * double(scales.size())));
-    std::nth_element(scales.begin(), scales.begin() + std::ptrdiff_t(q), scales.end());
-    reach_ = scales[q];
+    reach_ = touch_reach(scales);
     cell_ = std::max(2 * link_ * reach_, 1e-9);
     std::vector<std::pair<uint64_t, uint32_t>> keyed;
     keyed.reserve(members.size());
@@ -129,8 +127,8 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
     return out;
   // Large Gaussians do not link: a few broad flat ones of the floor the selection took join
   // everything standing on it.
-  std::vector<bool> linkable = selection;
   std::vector<uint32_t> members, broad;  // the linkable Gaussians, and the selected others
+  double limit = 0;                       // the largest scale that links
   {
     std::vector<uint32_t> selected;
     std::vector<float> scales;
@@ -141,21 +139,14 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
       }
     std::vector<float> sorted = scales;
     std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
-    const double limit = options.max_link_scale * sorted[sorted.size() / 2];
-    for (size_t i = 0; i < selected.size(); ++i) {
-      if (scales[i] > limit) {
-        linkable[selected[i]] = false;
-        broad.push_back(selected[i]);
-      } else {
-        members.push_back(selected[i]);
-      }
-    }
+    limit = options.max_link_scale * sorted[sorted.size() / 2];
+    for (size_t i = 0; i < selected.size(); ++i) (scales[i] > limit ? broad : members).push_back(selected[i]);
   }
   const LinkGrid touching(scene, members, link.link_sigmas);
   ZeroedArray<uint8_t> state(n);
   std::vector<uint32_t> frontier, leave;
   for (uint32_t seed : seeds) {
-    if (state[seed] != kUnvisited || inside[seed] || !linkable[seed]) continue;
+    if (state[seed] != kUnvisited || inside[seed] || scene.largest_scale(seed) > limit) continue;
     // Flood the set breadth first over the linkable Gaussians; it ends early when it joins what
     // a positive click's pixel shows (or a set that did), which for the rest of an object is
     // near. Not the mask: a clicked view's mask may spill onto the neighbour's near edge.

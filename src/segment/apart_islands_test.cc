@@ -9,17 +9,20 @@
 namespace isegman::segment {
 namespace {
 
+// A flat Gaussian at (x, y, z), `scale` wide in x and y, 2 mm thin in z.
+void add_gaussian(GaussianScene& s, float x, float y, float z, float scale) {
+  s.positions.insert(s.positions.end(), {x, y, z});
+  s.scales.insert(s.scales.end(), {std::log(scale), std::log(scale), std::log(0.002f)});
+  s.rotations.insert(s.rotations.end(), {1, 0, 0, 0});
+  s.opacity.push_back(0);
+}
+
 // Gaussians of scale 1 cm in a row along x: the clicked object (0..9, x = 0..9 cm) and,
 // 20 cm apart, a neighbour (10..19, x = 30..39 cm); with `bridge`, selected Gaussians in the
 // gap (20..39) join the two, of scale `bridge_scale`.
 GaussianScene row(bool bridge, float bridge_scale = 0.01f) {
   GaussianScene s;
-  auto add = [&](float x, float scale) {
-    s.positions.insert(s.positions.end(), {x, 0.f, 0.f});
-    s.scales.insert(s.scales.end(), {std::log(scale), std::log(scale), std::log(0.002f)});
-    s.rotations.insert(s.rotations.end(), {1, 0, 0, 0});
-    s.opacity.push_back(0);
-  };
+  auto add = [&](float x, float scale) { add_gaussian(s, x, 0.f, 0.f, scale); };
   for (int i = 0; i < 20; ++i) add(0.01f * float(i < 10 ? i : i + 20), 0.01f);
   if (bridge)
     for (int i = 0; i < 20; ++i) add(0.01f * float(10 + i), bridge_scale);
@@ -88,12 +91,7 @@ TEST(ApartIslands, ASmallSetApartMayBeAPartOfTheObject) {
   // selected): under min_size_share of the ten the mask holds, they stay. The neighbour of
   // ten leaves.
   GaussianScene s = row(false);
-  for (int i = 0; i < 3; ++i) {
-    s.positions.insert(s.positions.end(), {0.05f, 0.f, -0.3f - 0.01f * float(i)});
-    s.scales.insert(s.scales.end(), {std::log(0.01f), std::log(0.01f), std::log(0.002f)});
-    s.rotations.insert(s.rotations.end(), {1, 0, 0, 0});
-    s.opacity.push_back(0);
-  }
+  for (int i = 0; i < 3; ++i) add_gaussian(s, 0.05f, 0.f, -0.3f - 0.01f * float(i), 0.01f);
   const View view(range(0, 23), range(0, 10));
   std::vector<bool> selection(s.size(), true);
   EXPECT_EQ(drop_apart_islands(selection, s, {view.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 10u);
@@ -105,12 +103,7 @@ TEST(ApartIslands, BroadGaussiansDoNotJoin) {
   // took): they link nothing; the neighbour leaves, and with it the broad one that touches it
   // and nothing that stays. The others stay.
   GaussianScene s = row(false);
-  for (float x : {0.12f, 0.17f, 0.22f, 0.27f}) {
-    s.positions.insert(s.positions.end(), {x, 0.f, -0.01f});
-    s.scales.insert(s.scales.end(), {std::log(0.05f), std::log(0.05f), std::log(0.002f)});
-    s.rotations.insert(s.rotations.end(), {1, 0, 0, 0});
-    s.opacity.push_back(0);
-  }
+  for (float x : {0.12f, 0.17f, 0.22f, 0.27f}) add_gaussian(s, x, 0.f, -0.01f, 0.05f);
   const View view(range(0, 24), range(0, 10));
   std::vector<bool> selection(s.size(), true);
   EXPECT_EQ(drop_apart_islands(selection, s, {view.votes()}, {4}, 0.05, on(), IslandOptions{}).removed, 11u);

@@ -17,6 +17,13 @@ uint32_t root(std::vector<uint32_t>& parent, uint32_t a) {
 
 }  // namespace
 
+float touch_reach(std::vector<float>& scales) {
+  if (scales.empty()) return 0;
+  const size_t q = std::min(scales.size() - 1, size_t(0.95 * double(scales.size())));
+  std::nth_element(scales.begin(), scales.begin() + std::ptrdiff_t(q), scales.end());
+  return scales[q];
+}
+
 TouchingGaussians::TouchingGaussians(const GaussianScene& scene, const CentreIndex& index,
                                      const std::vector<bool>& selection, double link_sigmas, int threads)
     : scene_(scene), index_(index), selection_(selection), link_(link_sigmas) {
@@ -32,10 +39,7 @@ TouchingGaussians::TouchingGaussians(const GaussianScene& scene, const CentreInd
   });
   std::vector<float> scales;
   for (const std::vector<float>& part : parts) scales.insert(scales.end(), part.begin(), part.end());
-  if (scales.empty()) return;
-  const size_t q = std::min(scales.size() - 1, size_t(0.95 * double(scales.size())));
-  std::nth_element(scales.begin(), scales.begin() + std::ptrdiff_t(q), scales.end());
-  reach_ = scales[q];
+  reach_ = touch_reach(scales);
 }
 
 size_t drop_whole_islands(std::vector<bool>& selection, const VoteAccumulator& votes, const GaussianScene& scene,

@@ -30,6 +30,11 @@ struct IslandOptions {
   double min_own_share = 0.02;
 };
 
+// How far the touch rule's neighbour search reaches past a Gaussian's own scale: the 95th
+// percentile of the linked Gaussians' largest scales (`scales`, reordered), so that one huge
+// Gaussian does not widen every search. 0 when there are none.
+float touch_reach(std::vector<float>& scales);
+
 // The touch rule of the island steps (here and negative_islands.h): two selected Gaussians
 // touch when their centres lie within link_sigmas x (the largest scale of one + that of the
 // other). A search reaches as far as a high percentile of the selection's scales allows, so
