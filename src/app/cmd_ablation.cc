@@ -123,6 +123,7 @@ int run_eval_ablation(const Args& args) {
        [](segment::SessionOptions& o) { o.background_options.max_seed_radius = o.background_options.seed_radius; }},
       {"- set aside by several views", [](segment::SessionOptions& o) { o.attached_parts.min_set_aside_views = 1; }},
       {"- apart islands", [](segment::SessionOptions& o) { o.apart.enabled = false; }},
+      {"- seen behind the gaps", [](segment::SessionOptions& o) { o.apart.behind = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

@@ -85,6 +85,46 @@ class LinkGrid {
   std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> cells_;
 };
 
+// Marks bit `bit` in `behind` for every Gaussian of `seen` (selected, seen in the view; its
+// centre at (u, v), depth z) that selected Gaussians nearer by the gap flank on both sides.
+struct SeenAt {
+  uint32_t g;
+  float u, v, z;
+};
+void mark_behind(const std::vector<SeenAt>& seen, const Camera& camera, const ApartOptions& o, uint8_t bit,
+                 ZeroedArray<uint8_t>& behind) {
+  const double side = std::max(camera.width, camera.height);
+  const double cell = std::max(1.0, o.cell_share * side);
+  const int w = int(std::ceil(camera.width / cell)), h = int(std::ceil(camera.height / cell));
+  const int reach = std::max(1, int(std::lround(o.flank_share * side / cell)));
+  std::vector<float> nearest(size_t(w) * size_t(h), INFINITY);
+  auto at = [&](int x, int y) -> float& { return nearest[size_t(y) * size_t(w) + size_t(x)]; };
+  auto cell_of = [&](const SeenAt& s, int& x, int& y) {
+    x = int(std::floor(s.u / cell));
+    y = int(std::floor(s.v / cell));
+    return x >= 0 && y >= 0 && x < w && y < h;
+  };
+  for (const SeenAt& s : seen) {
+    int x, y;
+    if (cell_of(s, x, y)) at(x, y) = std::min(at(x, y), s.z);
+  }
+  for (const SeenAt& s : seen) {
+    int x, y;
+    if (!cell_of(s, x, y)) continue;
+    const float front = float(double(s.z) / (1 + o.behind_gap));
+    // Whether a cell 1..reach steps along (dx, dy) holds something nearer than `front`.
+    auto nearer = [&](int dx, int dy) {
+      for (int k = 1; k <= reach; ++k) {
+        const int cx = x + k * dx, cy = y + k * dy;
+        if (cx < 0 || cy < 0 || cx >= w || cy >= h) return false;
+        if (at(cx, cy) < front) return true;
+      }
+      return false;
+    };
+    if ((nearer(-1, 0) && nearer(1, 0)) || (nearer(0, -1) && nearer(0, 1))) behind[s.g] = uint8_t(behind[s.g] | bit);
+  }
+}
+
 }  // namespace
 
 ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene& scene,
@@ -95,15 +135,20 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
   if (!options.enabled || clicked.empty() || click_gaussians.empty()) return out;
   const size_t n = selection.size();
   const size_t views = std::min(clicked.size(), kMaxClickedViews);
-  // Per Gaussian: inside some clicked view's mask; a bit per clicked view that sees it outside.
-  ZeroedArray<uint8_t> inside(n), outside(n), at_click(n);
+  // Per Gaussian: inside some clicked view's mask; and a bit per clicked view that sees it
+  // outside its mask, that sees it at all (blending the vote's minimum weight), and that sees
+  // it behind the gaps of something nearer (mark_behind).
+  ZeroedArray<uint8_t> inside(n), outside(n), at_click(n), seen(n), behind(n);
   for (uint32_t g : click_gaussians) at_click[g] = 1;
   std::vector<uint32_t> seeds;
   size_t in_masks = 0;  // the object as the clicked views' masks show it: its selected Gaussians there
   const double min_fixed = min_weight * kVoteScale;
+  std::vector<SeenAt> seen_at;
   for (size_t v = 0; v < views; ++v) {
     const ViewVotes& total = *clicked[v].total;
     const ViewVotes& mask = *clicked[v].inside;
+    const Camera* camera = options.behind ? clicked[v].camera : nullptr;
+    seen_at.clear();
     size_t m = 0;
     for (size_t i = 0; i < total.index.size(); ++i) {
       const uint32_t g = total.index[i];
@@ -111,6 +156,11 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
       if (!selection[g]) continue;
       const double a = double(total.weight[i]);
       const double p = m < mask.index.size() && mask.index[m] == g ? double(mask.weight[m]) : 0.0;
+      if (a >= min_fixed) {
+        seen[g] = uint8_t(seen[g] | (1u << v));
+        double u, w, z;
+        if (camera && camera->project(scene.position(g), u, w, &z)) seen_at.push_back({g, float(u), float(w), float(z)});
+      }
       if (p > 0 && p >= options.inside_share * a) {
         in_masks += !inside[g];
         inside[g] = 1;
@@ -119,12 +169,28 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
         outside[g] = uint8_t(outside[g] | (1u << v));
       }
     }
+    if (camera) mark_behind(seen_at, *camera, options, uint8_t(1u << v), behind);
   }
+  const size_t outside_seeds = seeds.size();
+  size_t behind_seeds = 0;
+  if (options.behind)
+    for (size_t g = 0; g < n; ++g)
+      if (behind[g]) {
+        ++behind_seeds;
+        if (!outside[g]) seeds.push_back(uint32_t(g));
+      }
   // A set leaves only with at least min_size_share x in_masks Gaussians, min_seen_share of
-  // them seen outside one clicked view's mask, all of them seeds: with fewer seeds than that
-  // no set can, and the floods (a neighbour search per Gaussian) are skipped.
-  if (seeds.empty() || double(seeds.size()) < options.min_seen_share * options.min_size_share * double(in_masks))
-    return out;
+  // them seen outside one clicked view's mask, all of them seeds; or with at least
+  // behind_size_share / (1 + behind_size_share) of the selection, min_seen_share of them
+  // seen behind. With fewer seeds than either needs no set can, and the floods (a neighbour
+  // search per Gaussian) are skipped.
+  const bool apart_possible =
+      double(outside_seeds) >= options.min_seen_share * options.min_size_share * double(in_masks);
+  const size_t selected_total = size_t(std::count(selection.begin(), selection.end(), true));
+  const bool behind_possible =
+      behind_seeds > 0 && double(behind_seeds) >= options.min_seen_share * options.behind_size_share /
+                                                      (1 + options.behind_size_share) * double(selected_total);
+  if (seeds.empty() || (!apart_possible && !behind_possible)) return out;
   // Large Gaussians do not link: a few broad flat ones of the floor the selection took join
   // everything standing on it.
   std::vector<uint32_t> members, broad;  // the linkable Gaussians, and the selected others
@@ -146,7 +212,7 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
   ZeroedArray<uint8_t> state(n);
   std::vector<uint32_t> frontier, leave;
   for (uint32_t seed : seeds) {
-    if (state[seed] != kUnvisited || inside[seed] || scene.largest_scale(seed) > limit) continue;
+    if (state[seed] != kUnvisited || (inside[seed] && !behind[seed]) || scene.largest_scale(seed) > limit) continue;
     // Flood the set breadth first over the linkable Gaussians; it ends early when it joins what
     // a positive click's pixel shows (or a set that did), which for the rest of an object is
     // near. Not the mask: a clicked view's mask may spill onto the neighbour's near edge.
@@ -169,12 +235,24 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
       for (uint32_t g : frontier) state[g] = kJoined;
       continue;
     }
-    size_t seen_outside[kMaxClickedViews] = {};
+    size_t seen_outside[kMaxClickedViews] = {}, seen_in[kMaxClickedViews] = {}, seen_behind[kMaxClickedViews] = {};
     for (uint32_t g : frontier)
-      for (size_t v = 0; v < views; ++v) seen_outside[v] += (outside[g] >> v) & 1u;
+      for (size_t v = 0; v < views; ++v) {
+        seen_outside[v] += (outside[g] >> v) & 1u;
+        seen_in[v] += (seen[g] >> v) & 1u;
+        seen_behind[v] += (behind[g] >> v) & 1u;
+      }
     const size_t most = *std::max_element(seen_outside, seen_outside + views);
-    if (double(most) < options.min_seen_share * double(frontier.size())) continue;
-    if (double(frontier.size()) < options.min_size_share * double(in_masks)) continue;
+    const bool apart = double(most) >= options.min_seen_share * double(frontier.size()) &&
+                       double(frontier.size()) >= options.min_size_share * double(in_masks);
+    // Seen through the object's gaps: most of what a clicked view sees of it, and a real share
+    // of it, lies behind; an object's worth of Gaussians.
+    bool through = false;
+    for (size_t v = 0; v < views && options.behind; ++v)
+      through = through || (seen_in[v] > 0 && double(seen_behind[v]) >= options.min_behind_share * double(seen_in[v]) &&
+                            double(seen_behind[v]) >= options.min_seen_share * double(frontier.size()));
+    through = through && double(frontier.size()) >= options.behind_size_share * double(selected_total - frontier.size());
+    if (!apart && !through) continue;
     for (uint32_t g : frontier) state[g] = kLeaving;
     leave.insert(leave.end(), frontier.begin(), frontier.end());
     ++out.islands;

@@ -138,5 +138,78 @@ TEST(ApartIslands, ASetTheClickedViewsBarelySeeIsNotTheirsToJudge) {
             10u);
 }
 
+// A clicked trellis 1 m in front of a camera at the origin (bars of touching 1 cm Gaussians
+// every 5 cm, x and y from -20 to 20 cm) and, `behind` m farther, a square block of Gaussians
+// `half` m across each way from the axis (a vase seen through the bars). With `joined`, a
+// chain of Gaussians along the axis joins the block to the trellis.
+struct Trellis {
+  GaussianScene scene;
+  size_t bars = 0;  // the trellis's Gaussians come first
+  Camera camera;
+  Trellis(double behind, double half, bool joined) {
+    for (int bar = -4; bar <= 4; ++bar)
+      for (int k = -20; k <= 20; ++k) {
+        add_gaussian(scene, 0.05f * float(bar), 0.01f * float(k), 1.f, 0.01f);  // a column
+        add_gaussian(scene, 0.01f * float(k), 0.05f * float(bar), 1.f, 0.01f);  // a row
+      }
+    bars = scene.size();
+    const int n = int(std::lround(half / 0.01));
+    for (int i = -n; i <= n; ++i)
+      for (int j = -n; j <= n; ++j) add_gaussian(scene, 0.01f * float(i), 0.01f * float(j), float(1 + behind), 0.01f);
+    if (joined)
+      for (int k = 1; k < int(std::lround(behind / 0.01)); ++k) add_gaussian(scene, 0.f, 0.f, 1.f + 0.01f * float(k), 0.01f);
+    camera.width = camera.height = 400;
+    camera.fx = camera.fy = 400;
+    camera.cx = camera.cy = 200;
+  }
+  // The clicked view sees every Gaussian, and its mask (SAM's, of the trellis) holds them all.
+  ClickedViewVotes votes(View& view) const {
+    view = View(range(0, uint32_t(scene.size())), range(0, uint32_t(scene.size())));
+    ClickedViewVotes v = view.votes();
+    v.camera = &camera;
+    return v;
+  }
+};
+
+TEST(ApartIslands, AnObjectSeenBehindTheClickedObjectsGapsLeaves) {
+  // The block 30 cm behind the bars: every view's mask of the lattice holds it, so only 3D
+  // and the clicked view's depths tell it is not the lattice.
+  const Trellis t(0.3, 0.1, false);
+  View view({}, {});
+  std::vector<bool> selection(t.scene.size(), true);
+  const ApartReport r = drop_apart_islands(selection, t.scene, {t.votes(view)}, {0}, 0.05, on(), IslandOptions{});
+  std::printf("[ apart islands ] the block behind the trellis: %zu of %zu Gaussians left, in %d set(s)\n", r.removed,
+              t.scene.size() - t.bars, r.islands);
+  EXPECT_EQ(r.removed, t.scene.size() - t.bars);
+  for (size_t i = 0; i < t.scene.size(); ++i) EXPECT_EQ(selection[i], i < t.bars) << i;
+  // Without the rule nothing leaves: the clicked view's mask holds the block.
+  ApartOptions off = on();
+  off.behind = false;
+  std::vector<bool> kept(t.scene.size(), true);
+  EXPECT_EQ(drop_apart_islands(kept, t.scene, {t.votes(view)}, {0}, 0.05, off, IslandOptions{}).removed, 0u);
+}
+
+TEST(ApartIslands, WhatIsSeenBehindTheGapsStaysWhenItIsAPartOrJoined) {
+  View view({}, {});
+  // Joined to the lattice by a chain (a plant's back leaves on their stem): it stays.
+  const Trellis joined(0.3, 0.1, true);
+  std::vector<bool> all(joined.scene.size(), true);
+  EXPECT_EQ(drop_apart_islands(all, joined.scene, {joined.votes(view)}, {0}, 0.05, on(), IslandOptions{}).removed, 0u);
+  // A small block (9 Gaussians against the lattice's 738: a leaf cluster behind the others)
+  // stays, and so does a block 2.5 cm behind (within behind_gap of the lattice's depth).
+  const Trellis small(0.3, 0.01, false);
+  std::vector<bool> some(small.scene.size(), true);
+  EXPECT_EQ(drop_apart_islands(some, small.scene, {small.votes(view)}, {0}, 0.05, on(), IslandOptions{}).removed, 0u);
+  const Trellis close(0.025, 0.1, false);
+  std::vector<bool> near(close.scene.size(), true);
+  EXPECT_EQ(drop_apart_islands(near, close.scene, {close.votes(view)}, {0}, 0.05, on(), IslandOptions{}).removed, 0u);
+  // Without the camera nothing is seen behind.
+  const Trellis far(0.3, 0.1, false);
+  std::vector<bool> blind(far.scene.size(), true);
+  ClickedViewVotes no_camera = far.votes(view);
+  no_camera.camera = nullptr;
+  EXPECT_EQ(drop_apart_islands(blind, far.scene, {no_camera}, {0}, 0.05, on(), IslandOptions{}).removed, 0u);
+}
+
 }  // namespace
 }  // namespace isegman::segment

@@ -1200,7 +1200,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     std::vector<ClickedViewVotes> clicked;
     for (size_t i = 0; i < voted.size(); ++i) {
       views_[voted[i]].all_votes.unpack(totals[i], o.threads);
-      clicked.push_back({&clicked_inside[voted[i]], &totals[i]});
+      clicked.push_back({&clicked_inside[voted[i]], &totals[i], &views_[voted[i]].camera});
     }
     std::vector<uint32_t> at_clicks;
     for (const UserClick& c : next.clicks)
