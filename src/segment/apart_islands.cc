@@ -100,9 +100,12 @@ void mark_behind(const std::vector<SeenAt>& seen, const Camera& camera, const Ap
   std::vector<float> nearest(size_t(w) * size_t(h), INFINITY);
   auto at = [&](int x, int y) -> float& { return nearest[size_t(y) * size_t(w) + size_t(x)]; };
   auto cell_of = [&](const SeenAt& s, int& x, int& y) {
-    x = int(std::floor(s.u / cell));
-    y = int(std::floor(s.v / cell));
-    return x >= 0 && y >= 0 && x < w && y < h;
+    // A broad Gaussian seen in the view may be centred far outside it (or near the camera's
+    // plane): compare before converting.
+    if (!(s.u >= 0 && s.v >= 0 && s.u < camera.width && s.v < camera.height)) return false;
+    x = std::min(w - 1, int(s.u / cell));
+    y = std::min(h - 1, int(s.v / cell));
+    return true;
   };
   for (const SeenAt& s : seen) {
     int x, y;
