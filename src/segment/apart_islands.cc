@@ -86,13 +86,14 @@ class LinkGrid {
 };
 
 // Marks bit `bit` in `behind` for every Gaussian of `seen` (selected, seen in the view; its
-// centre at (u, v), depth z) that selected Gaussians nearer by the gap flank on both sides.
+// centre at (u, v), depth z) that selected Gaussians nearer by the gap flank on both sides;
+// appends to `marked` each Gaussian no view had marked before.
 struct SeenAt {
   uint32_t g;
   float u, v, z;
 };
 void mark_behind(const std::vector<SeenAt>& seen, const Camera& camera, const ApartOptions& o, uint8_t bit,
-                 ZeroedArray<uint8_t>& behind) {
+                 ZeroedArray<uint8_t>& behind, std::vector<uint32_t>& marked) {
   const double side = std::max(camera.width, camera.height);
   const double cell = std::max(1.0, o.cell_share * side);
   const int w = int(std::ceil(camera.width / cell)), h = int(std::ceil(camera.height / cell));
@@ -124,7 +125,10 @@ void mark_behind(const std::vector<SeenAt>& seen, const Camera& camera, const Ap
       }
       return false;
     };
-    if ((nearer(-1, 0) && nearer(1, 0)) || (nearer(0, -1) && nearer(0, 1))) behind[s.g] = uint8_t(behind[s.g] | bit);
+    if ((nearer(-1, 0) && nearer(1, 0)) || (nearer(0, -1) && nearer(0, 1))) {
+      if (!behind[s.g]) marked.push_back(s.g);
+      behind[s.g] = uint8_t(behind[s.g] | bit);
+    }
   }
 }
 
@@ -147,6 +151,7 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
   size_t in_masks = 0;  // the object as the clicked views' masks show it: its selected Gaussians there
   const double min_fixed = min_weight * kVoteScale;
   std::vector<SeenAt> seen_at;
+  std::vector<uint32_t> behind_marked;  // every Gaussian some clicked view sees behind
   for (size_t v = 0; v < views; ++v) {
     const ViewVotes& total = *clicked[v].total;
     const ViewVotes& mask = *clicked[v].inside;
@@ -172,16 +177,11 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
         outside[g] = uint8_t(outside[g] | (1u << v));
       }
     }
-    if (camera) mark_behind(seen_at, *camera, options, uint8_t(1u << v), behind);
+    if (camera) mark_behind(seen_at, *camera, options, uint8_t(1u << v), behind, behind_marked);
   }
-  const size_t outside_seeds = seeds.size();
-  size_t behind_seeds = 0;
-  if (options.behind)
-    for (size_t g = 0; g < n; ++g)
-      if (behind[g]) {
-        ++behind_seeds;
-        if (!outside[g]) seeds.push_back(uint32_t(g));
-      }
+  const size_t outside_seeds = seeds.size(), behind_seeds = behind_marked.size();
+  for (uint32_t g : behind_marked)
+    if (!outside[g]) seeds.push_back(g);
   // A set leaves only with at least min_size_share x in_masks Gaussians, min_seen_share of
   // them seen outside one clicked view's mask, all of them seeds; or with at least
   // behind_size_share / (1 + behind_size_share) of the selection, min_seen_share of them

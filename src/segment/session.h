@@ -124,7 +124,8 @@ struct SessionOptions {
   // A set of selected Gaussians that a clicked view sees outside its mask, as large as a
   // neighbour and apart in 3D from what the clicked pixel shows, leaves (apart_islands.h): a
   // neighbour most other views' masks merged with the object (a playpen beside a climbing
-  // triangle).
+  // triangle). So does one a clicked view sees behind the object's gaps (a vase behind a
+  // clicked trellis; ApartOptions::behind).
   ApartOptions apart{true};
   // What a minority of the views masks with the object (a broom's bristles, a kettle's
   // spout) joins the selection where touching Gaussians attach it (attached_parts.h); not
@@ -248,7 +249,7 @@ struct RoundReport {
   size_t selected = 0;
   bool larger_granularity = false;  // the first view voted with a larger candidate than SAM's choice
   size_t whole_islands = 0;         // Gaussians the whole rule alone selected, apart from the rest (dropped)
-  size_t apart_islands = 0;         // Gaussians a clicked view left out, apart from what the click shows (dropped)
+  size_t apart_islands = 0;         // Gaussians a clicked view left out or saw behind the gaps, apart from what the click shows (dropped)
   size_t attached_parts = 0;        // Gaussians added as parts a minority of the views masks (attached_parts.h)
   size_t negative_islands = 0;      // Gaussians negative clicks took out as islands apart from the positive ones
   bool duplicate = false;  // the click repeated an earlier one: nothing changed
