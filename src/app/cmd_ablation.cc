@@ -124,6 +124,7 @@ int run_eval_ablation(const Args& args) {
       {"- set aside by several views", [](segment::SessionOptions& o) { o.attached_parts.min_set_aside_views = 1; }},
       {"- apart islands", [](segment::SessionOptions& o) { o.apart.enabled = false; }},
       {"- seen behind the gaps", [](segment::SessionOptions& o) { o.apart.behind = false; }},
+      {"- selection open beyond a part", [](segment::SessionOptions& o) { o.part_leaves_selection_open = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

@@ -59,7 +59,7 @@ SessionOptions paper_pipeline(SessionOptions o) {
   o.depth_layers = o.agreement_inspection = o.choose_candidate = o.negative_regions = o.click_by_click = o.negative_granularity = false;
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;
   o.whole_islands.enabled = o.negative_islands = o.beyond_part.band = o.beyond_part.whole = false;
-  o.apart.enabled = false;
+  o.apart.enabled = o.part_leaves_selection_open = false;
   o.attached_parts.enabled = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
@@ -368,6 +368,14 @@ Image selection_values_coverage(const SegmentView& view, const LiveSelection& se
   // Only the tiles its splats reach: elsewhere the blend of the values is 0.
   const std::vector<uint8_t> tiles = tiles_reached(view.frame, selection.eligible(), threads);
   return rasterize(view.frame, rs, &selection.values(), nullptr, &tiles).value;
+}
+
+// Where the selection's coverage is over one half and the mask is not: the selection around
+// a mask that is a part of it.
+Image outside(const Image& coverage, const Image& mask) {
+  Image o(mask.width, mask.height, 1);
+  for (size_t i = 0; i < o.data.size(); ++i) o.data[i] = coverage.data[i] > 0.5f && mask.data[i] <= 0.5f ? 1.f : 0.f;
+  return o;
 }
 
 // The candidate most consistent with the rendered selection (IoU); SAM's own choice
@@ -756,7 +764,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // once per view for inspection, votes, the background gate and the centre evidence),
   // gated to the target's depth layer.
   // `raw` (optional): the mask's votes already computed in the inspection pass.
-  auto vote = [&](size_t k, ViewState& vs, const std::vector<bool>* selection, ViewVotes* raw, const Image& mask) {
+  auto vote = [&](size_t k, ViewState& vs, const std::vector<bool>* selection, ViewVotes* raw, const Image& mask,
+                  const Image* open = nullptr) {
     const SegmentView& view = views_[k];
     if (raw) {
       vs.positive = std::move(*raw);
@@ -817,6 +826,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
       // blended into the mask's border) keeps the band's weight against it.
       Image band = whole_band(*vs.sam, vs.candidate, vs.sam_negative ? &vs.sam_negative->mask() : nullptr,
                               o.max_whole_growth, o.min_granularity_score);
+      if (open && !open->empty()) {
+        if (band.empty()) band = Image(open->width, open->height, 1);
+        for (size_t i = 0; i < band.data.size(); ++i) band.data[i] = std::max(band.data[i], open->data[i]);
+      }
       if (o.beyond_part.band) clear_band_beyond_part(band, mask, view.depth, view.alpha, o.beyond_part);
       for (float v : band.data) vs.whole_pixels += v > 0.5f;
       // Its tiles over Gaussians that have had no positive vote wait (band_ledger.h).
@@ -876,6 +889,19 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // grouped what they mark with the object: then a view that cannot separate them is dropped,
   // else its mask less what they mark votes (respect_negatives).
   bool negative_switched = false;
+  // Whether the views accepted so far mask the selection itself, not much more: most of
+  // them (at least two) have at least tight_mask_share of their mask on it. Where most
+  // masks are far larger, the selection they agree on may hold more than the object, and a
+  // tighter view is evidence against that (SessionOptions::part_leaves_selection_open).
+  auto selection_is_masked = [&]() {
+    int judged = 0, tight = 0;
+    for (const ViewState& v : fresh)
+      if (v.status == ViewStatus::Accepted && v.inspected) {
+        ++judged;
+        tight += v.overlap >= o.tight_mask_share;
+      }
+    return judged >= 2 && 2 * tight > judged;
+  };
   auto inspect_and_vote = [&](int forced_first) {
     fresh = unjudged;
     acc = VoteAccumulator(scene_.size());
@@ -896,6 +922,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       if (!first) decide();
       const std::vector<bool>& current = live.eligible();
       Image coverage, mask;
+      Image selection_beyond;  // the selection around a passing part of it, left open
       ViewVotes raw;
       bool have_raw = false;
       const bool several = r.candidates.size() > 1 && o.choose_candidate;
@@ -1018,9 +1045,11 @@ RoundReport Session::run_round(State& next, const State& prev) {
           // SAM prompted from the selection itself, as a view no click reached is: a click
           // near the frame's edge on a pillar leaving it segments a piece of the pillar in
           // each of its three candidates, the selection's box the part in view.
+          Image full;
+          if (o.selection_prompt_growth || (o.part_leaves_selection_open && !failing))
+            full = selection_values_coverage(views_[k], live, o.threads);
           if (o.selection_prompt_growth) {
             std::vector<models::Click> prompt;
-            const Image full = selection_values_coverage(views_[k], live, o.threads);
             if (prompt_from_coverage(full, prompt)) {
               ViewState grown = vs;
               const auto boxed = std::make_shared<const models::SegmentResult>(sam_->decode(views_[k].embedding, prompt));
@@ -1034,6 +1063,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
             vs = std::move(best);
             mask = std::move(best_mask);
             raw = std::move(best_votes);
+          } else if (o.part_leaves_selection_open && !failing && a.mask_on_selection() >= o.part_on_selection &&
+                     selection_is_masked()) {
+            selection_beyond = outside(full, mask);
           }
         }
         vs.overlap = a.mask_on_selection();
@@ -1046,7 +1078,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
           continue;
         }
       }
-      vote(k, vs, first ? nullptr : &current, have_raw ? &raw : nullptr, mask);
+      vote(k, vs, first ? nullptr : &current, have_raw ? &raw : nullptr, mask, &selection_beyond);
       first = false;
     }
   };
@@ -1154,7 +1186,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
         vs.status = ViewStatus::NoOverlap;
         continue;
       }
-      vote(k, vs, &current, nullptr, mask);
+      const bool part = o.part_leaves_selection_open && vs.overlap >= o.part_on_selection &&
+                        vs.selection_inside < o.part_of_selection && selection_is_masked();
+      const Image beyond = part ? outside(coverages[i], mask) : Image();
+      vote(k, vs, &current, nullptr, mask, &beyond);
       ++rep.prompted;
       ++accepted;
     }

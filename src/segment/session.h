@@ -105,6 +105,17 @@ struct SessionOptions {
   // tighter views would grow into the window behind it that most views take in.
   double part_of_selection = 0.8;
   bool selection_prompt_growth = true;
+  // A mask that passes as a part of the selection (it lies on the selection, at least
+  // part_on_selection of it, and holds less than part_of_selection of it) and does not grow,
+  // one piece of a pillar the other views mask whole, says no more than a view whose larger
+  // candidate is the selection: what the selection covers in that view around the mask is
+  // left open there as whole_neutral leaves a larger candidate open, not voted against. So
+  // in a view prompted from the selection. Only while most views accepted so far (two or
+  // more) have tight_mask_share of their masks on the selection: where most masks are far
+  // larger than it, the selection they agree on may hold more than the object (what most
+  // views' masks hold besides a climbing triangle), and a tighter view is evidence against that.
+  bool part_leaves_selection_open = true;
+  double part_on_selection = 0.5, tight_mask_share = 0.8;
   // A view whose mask is a part of a larger candidate of its own (the back of a chair, and the
   // whole chair) does not say whether the part or the whole is meant: what the larger
   // candidates add around the mask (for Gaussians wholly outside it) is left open in that
