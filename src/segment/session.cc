@@ -764,8 +764,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // once per view for inspection, votes, the background gate and the centre evidence),
   // gated to the target's depth layer.
   // `raw` (optional): the mask's votes already computed in the inspection pass.
+  // `left_open` (optional): pixels left open besides the larger candidates' band (the
+  // selection around a mask that is a part of it).
   auto vote = [&](size_t k, ViewState& vs, const std::vector<bool>* selection, ViewVotes* raw, const Image& mask,
-                  const Image* open = nullptr) {
+                  const Image* left_open = nullptr) {
     const SegmentView& view = views_[k];
     if (raw) {
       vs.positive = std::move(*raw);
@@ -826,9 +828,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
       // blended into the mask's border) keeps the band's weight against it.
       Image band = whole_band(*vs.sam, vs.candidate, vs.sam_negative ? &vs.sam_negative->mask() : nullptr,
                               o.max_whole_growth, o.min_granularity_score);
-      if (open && !open->empty()) {
-        if (band.empty()) band = Image(open->width, open->height, 1);
-        for (size_t i = 0; i < band.data.size(); ++i) band.data[i] = std::max(band.data[i], open->data[i]);
+      if (left_open && !left_open->empty()) {
+        if (band.empty()) band = Image(left_open->width, left_open->height, 1);
+        for (size_t i = 0; i < band.data.size(); ++i) band.data[i] = std::max(band.data[i], left_open->data[i]);
       }
       if (o.beyond_part.band) clear_band_beyond_part(band, mask, view.depth, view.alpha, o.beyond_part);
       for (float v : band.data) vs.whole_pixels += v > 0.5f;
