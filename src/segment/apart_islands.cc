@@ -145,18 +145,32 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
   // Per Gaussian: inside some clicked view's mask; and a bit per clicked view that sees it
   // outside its mask, that sees it at all (blending the vote's minimum weight), and that sees
   // it behind the gaps of something nearer (mark_behind).
-  ZeroedArray<uint8_t> inside(n), outside(n), at_click(n), seen(n), behind(n);
+  ZeroedArray<uint8_t> inside(n), outside(n), at_click(n), seen(n), behind(n), beyond(n);
   for (uint32_t g : click_gaussians) at_click[g] = 1;
   std::vector<uint32_t> seeds;
   size_t in_masks = 0;  // the object as the clicked views' masks show it: its selected Gaussians there
   const double min_fixed = min_weight * kVoteScale;
   std::vector<SeenAt> seen_at;
   std::vector<uint32_t> behind_marked;  // every Gaussian some clicked view sees behind
+  std::vector<uint32_t> beyond_marked;  // every Gaussian some clicked view sees behind the clicked surface
   for (size_t v = 0; v < views; ++v) {
     const ViewVotes& total = *clicked[v].total;
     const ViewVotes& mask = *clicked[v].inside;
     const Camera* camera = options.behind ? clicked[v].camera : nullptr;
     seen_at.clear();
+    // The clicked surface's depth in this view: the median of what the clicks' pixels show.
+    double beyond_z = INFINITY;
+    if (camera && options.behind_click_gap > 0) {
+      std::vector<double> zs;
+      for (uint32_t g : click_gaussians) {
+        double u, w, z;
+        if (camera->project(scene.position(g), u, w, &z)) zs.push_back(z);
+      }
+      if (!zs.empty()) {
+        std::nth_element(zs.begin(), zs.begin() + std::ptrdiff_t(zs.size() / 2), zs.end());
+        beyond_z = zs[zs.size() / 2] * (1 + options.behind_click_gap);
+      }
+    }
     size_t m = 0;
     for (size_t i = 0; i < total.index.size(); ++i) {
       const uint32_t g = total.index[i];
@@ -167,7 +181,13 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
       if (a >= min_fixed) {
         seen[g] = uint8_t(seen[g] | (1u << v));
         double u, w, z;
-        if (camera && camera->project(scene.position(g), u, w, &z)) seen_at.push_back({g, float(u), float(w), float(z)});
+        if (camera && camera->project(scene.position(g), u, w, &z)) {
+          seen_at.push_back({g, float(u), float(w), float(z)});
+          if (z > beyond_z) {
+            if (!beyond[g]) beyond_marked.push_back(g);
+            beyond[g] = uint8_t(beyond[g] | (1u << v));
+          }
+        }
       }
       if (p > 0 && p >= options.inside_share * a) {
         in_masks += !inside[g];
@@ -179,9 +199,13 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
     }
     if (camera) mark_behind(seen_at, *camera, options, uint8_t(1u << v), behind, behind_marked);
   }
-  const size_t outside_seeds = seeds.size(), behind_seeds = behind_marked.size();
+  size_t behind_seeds = behind_marked.size();  // seen behind either way
+  for (uint32_t g : beyond_marked) behind_seeds += !behind[g];
+  const size_t outside_seeds = seeds.size();
   for (uint32_t g : behind_marked)
     if (!outside[g]) seeds.push_back(g);
+  for (uint32_t g : beyond_marked)
+    if (!outside[g] && !behind[g]) seeds.push_back(g);
   // A set leaves only with at least min_size_share x in_masks Gaussians, min_seen_share of
   // them seen outside one clicked view's mask, all of them seeds; or with at least
   // behind_size_share / (1 + behind_size_share) of the selection, min_seen_share of them
@@ -214,8 +238,33 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
   const LinkGrid touching(scene, members, link.link_sigmas);
   ZeroedArray<uint8_t> state(n);
   std::vector<uint32_t> frontier, leave;
+  // Behind the clicked surface counts only where the set joined to the clicks is an object's
+  // worth of what the clicked masks hold: a skeleton's bones, each a set of its own, do not
+  // stand for it. That set is flooded first, as far as that share (a seed's flood stops where
+  // it meets it), and what touches a click's own Gaussian joins even where that Gaussian is too
+  // broad to link.
+  bool beyond_counts = false;
+  {
+    const double needed = options.behind_click_gap > 0 ? options.min_click_set_share * double(in_masks) : 0.0;
+    std::vector<uint32_t> reached;
+    for (uint32_t g : click_gaussians)
+      if (selection[g] && state[g] == kUnvisited) {
+        state[g] = kJoined;
+        reached.push_back(g);
+      }
+    const size_t own = reached.size();
+    for (size_t head = 0; head < reached.size() && (head < own || double(reached.size()) < needed); ++head)
+      touching.for_each(reached[head], [&](uint32_t j) {
+        if (state[j] != kUnvisited) return;
+        state[j] = kJoined;
+        reached.push_back(j);
+      });
+    beyond_counts = options.behind_click_gap > 0 && double(reached.size()) >= needed;
+  }
   for (uint32_t seed : seeds) {
-    if (state[seed] != kUnvisited || (inside[seed] && !behind[seed]) || scene.largest_scale(seed) > limit) continue;
+    if (state[seed] != kUnvisited || (inside[seed] && !behind[seed] && !(beyond_counts && beyond[seed])) ||
+        scene.largest_scale(seed) > limit)
+      continue;
     // Flood the set breadth first over the linkable Gaussians; it ends early when it joins what
     // a positive click's pixel shows (or a set that did), which for the rest of an object is
     // near. Not the mask: a clicked view's mask may spill onto the neighbour's near edge.
@@ -243,7 +292,7 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
       for (size_t v = 0; v < views; ++v) {
         seen_outside[v] += (outside[g] >> v) & 1u;
         seen_in[v] += (seen[g] >> v) & 1u;
-        seen_behind[v] += (behind[g] >> v) & 1u;
+        seen_behind[v] += ((behind[g] | (beyond_counts ? beyond[g] : 0)) >> v) & 1u;
       }
     const size_t most = *std::max_element(seen_outside, seen_outside + views);
     const bool apart = double(most) >= options.min_seen_share * double(frontier.size()) &&

@@ -8,7 +8,9 @@
 // holds nothing a positive click's pixel shows, while a clicked view sees a real share of it
 // outside its mask, leaves the selection. So does one that a clicked view sees behind the
 // gaps of something nearer (a vase behind a clicked trellis: SAM's mask of a lattice takes in
-// what shows between its bars, in every view) when it is an object's worth of Gaussians.
+// what shows between its bars, in every view) when it is an object's worth of Gaussians, and
+// one that a clicked view sees behind the clicked surface (a bookcase SAM merges with the
+// plant standing before it) while the set joined to the click is an object's worth itself.
 #pragma once
 
 #include <cstddef>
@@ -61,6 +63,11 @@ struct ApartOptions {
   // the vase behind the trellis holds 1.1 x, the ball behind the fence 1.8 x.
   double min_behind_share = 0.6;
   double behind_size_share = 0.25;
+  // A selected Gaussian a clicked view sees deeper than the clicked surface (the median
+  // depth of what the clicks' pixels show) by this share also lies behind (0 = off), where
+  // the set joined to the clicks holds min_click_set_share of what the clicked masks hold.
+  double behind_click_gap = 0.05;
+  double min_click_set_share = 0.2;
 };
 
 // One view with a positive click: the votes of its mask before any gate (the pixels the user's
@@ -84,7 +91,9 @@ struct ApartReport {
 // least min_seen_share of the Gaussians outside its mask, and which holds at least
 // min_size_share as many Gaussians as the clicked masks; or of which a clicked view with a
 // camera sees min_behind_share of what it sees behind (and min_seen_share of the set), and
-// which holds behind_size_share as many Gaussians as the rest of the selection. `min_weight`: the weight (in pixels)
+// which holds behind_size_share as many Gaussians as the rest of the selection; behind is
+// behind the gaps of nearer selected Gaussians, or behind_click_gap deeper than the clicked
+// surface where the set joined to the clicks holds min_click_set_share of in_masks. `min_weight`: the weight (in pixels)
 // a Gaussian must blend in a view to count as seen there. Nothing leaves without clicked
 // views or click Gaussians.
 ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene& scene,

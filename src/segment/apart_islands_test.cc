@@ -211,5 +211,65 @@ TEST(ApartIslands, WhatIsSeenBehindTheGapsStaysWhenItIsAPartOrJoined) {
   EXPECT_EQ(drop_apart_islands(blind, far.scene, {no_camera}, {0}, 0.05, on(), IslandOptions{}).removed, 0u);
 }
 
+// A clicked object `half` m across each way from the axis, 1 m in front of a camera at the
+// origin, and 30 cm behind it a larger board (60 cm each way) that the clicked view sees mostly
+// around the object, not between its parts: a bookcase SAM merges with the plant before it.
+struct PlantBeforeBookcase {
+  GaussianScene scene;
+  size_t plant = 0;  // the clicked object's Gaussians come first
+  Camera camera;
+  explicit PlantBeforeBookcase(double half) {
+    const int n = int(std::lround(half / 0.01));
+    for (int i = -n; i <= n; ++i)
+      for (int j = -n; j <= n; ++j) add_gaussian(scene, 0.01f * float(i), 0.01f * float(j), 1.f, 0.01f);
+    plant = scene.size();
+    for (int i = -30; i <= 30; ++i)
+      for (int j = -30; j <= 30; ++j) add_gaussian(scene, 0.02f * float(i), 0.02f * float(j), 1.3f, 0.02f);
+    camera.width = camera.height = 400;
+    camera.fx = camera.fy = 400;
+    camera.cx = camera.cy = 200;
+  }
+  ClickedViewVotes votes(View& view) const {  // seen whole, and all in the clicked view's mask
+    view = View(range(0, uint32_t(scene.size())), range(0, uint32_t(scene.size())));
+    ClickedViewVotes v = view.votes();
+    v.camera = &camera;
+    return v;
+  }
+};
+
+TEST(ApartIslands, WhatStandsApartBehindTheClickedSurfaceLeaves) {
+  // The object (1,681 Gaussians, 31 % of what the clicked mask holds) is the set joined to the
+  // click; the board, apart from it and 30 % deeper than the clicked surface, leaves. No
+  // nearer Gaussians flank most of it (it shows around the object), so the gaps alone do not
+  // take it out.
+  const PlantBeforeBookcase p(0.2);
+  View view({}, {});
+  std::vector<bool> selection(p.scene.size(), true);
+  const ApartReport r = drop_apart_islands(selection, p.scene, {p.votes(view)}, {0}, 0.05, on(), IslandOptions{});
+  std::printf("[ apart islands ] the board behind the clicked object: %zu of %zu Gaussians left\n", r.removed,
+              p.scene.size() - p.plant);
+  EXPECT_EQ(r.removed, p.scene.size() - p.plant);
+  for (size_t i = 0; i < p.scene.size(); ++i) EXPECT_EQ(selection[i], i < p.plant) << i;
+  ApartOptions gaps_only = on();
+  gaps_only.behind_click_gap = 0;
+  std::vector<bool> kept(p.scene.size(), true);
+  EXPECT_EQ(drop_apart_islands(kept, p.scene, {p.votes(view)}, {0}, 0.05, gaps_only, IslandOptions{}).removed, 0u);
+}
+
+TEST(ApartIslands, WhatLiesBehindAClickedPieceStays) {
+  // The clicked set is 25 Gaussians against the board's 3,721 (a skeleton's rib among bones
+  // that are sets of their own): it does not stand for the object, and the board stays.
+  const PlantBeforeBookcase piece(0.02);
+  View view({}, {});
+  std::vector<bool> selection(piece.scene.size(), true);
+  EXPECT_EQ(drop_apart_islands(selection, piece.scene, {piece.votes(view)}, {0}, 0.05, on(), IslandOptions{}).removed,
+            0u);
+  // It is that guard that keeps it: without it the board would leave.
+  ApartOptions unguarded = on();
+  unguarded.min_click_set_share = 0;
+  EXPECT_EQ(drop_apart_islands(selection, piece.scene, {piece.votes(view)}, {0}, 0.05, unguarded, IslandOptions{}).removed,
+            piece.scene.size() - piece.plant);
+}
+
 }  // namespace
 }  // namespace isegman::segment

@@ -355,6 +355,24 @@ TEST(HardCases, ATightViewStillVotesAgainstWhatMostViewsLargerMasksAdd) {
   EXPECT_LT(ours.background, open.background);
 }
 
+TEST(HardCases, ABookcaseSamMergesWithThePlantInFrontOfItLeavesTheSelection) {
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // The office's monstera stands 20-30 cm before a bookcase (the held-out scene). SAM's choice
+  // at a leaf, in the clicked view and every other, is the bookcase with the plant in front
+  // of it. In 3D the bookcase stands apart from the plant the click hit, and the clicked view
+  // sees most of it 5 % deeper than the clicked leaf: it leaves, the plant stays.
+  SessionOptions kept;
+  kept.apart.behind_click_gap = 0;
+  const Outcome ours = run("office/monstera", SessionOptions(), {}, kAblation);
+  const Outcome with_case = run("office/monstera", kept, {}, kAblation);
+  std::printf("[ hard ] office/monstera at %d px: IoU %.1f%% (%zu selected, %zu scenery); the set behind the "
+              "click kept %.1f%% (%zu selected, %zu scenery)\n",
+              kAblation, 100 * ours.iou, ours.selected, ours.scenery, 100 * with_case.iou, with_case.selected,
+              with_case.scenery);
+  EXPECT_GT(ours.iou, with_case.iou + 0.2);
+  EXPECT_LT(ours.scenery, with_case.scenery / 2);
+}
+
 std::pair<Outcome, Outcome> with_and_without_object_prior(const std::string& name, int width = kAblation) {
   SessionOptions sams_choice;
   sams_choice.object_prior = false;
