@@ -1461,6 +1461,27 @@ EvalScene atrium(const EvalSetOptions& opt) {
   return std::move(s);
 }
 
+// Wooden floor boards on z = 0 over [x0, x1] x [y0, y1]: boards `width` wide running along y,
+// each board's end joints every `length`, shifted by `stagger` x its index; `seam` wide dark
+// seams; each board's colour varies along `tint` by up to half of `variation`, each
+// Gaussian's by a little grey noise.
+struct FloorBoards {
+  double x0, x1, y0, y1, width, stagger, length, seam;
+  Vec3 seam_rgb, rgb, tint;
+  double variation, size, shine;
+};
+
+void floor_boards(SceneBuilder& b, const FloorBoards& f, int n) {
+  for (int i = 0; i < n; ++i) {
+    const Vec3 p{b.rng.range(f.x0, f.x1), b.rng.range(f.y0, f.y1), 0};
+    const int board = int(std::floor((p.x + 10) / f.width));
+    const double along = p.y + 10 + f.stagger * board;
+    const bool seam = std::fmod(p.x + 10, f.width) < f.seam || std::fmod(along, f.length) < f.seam;
+    const Vec3 c = seam ? f.seam_rgb : f.rgb + f.tint * (f.variation * cell_noise(board, int(along / f.length)));
+    b.splat(p, {0, 0, 1}, f.size, c + Vec3{1, 1, 1} * (0.015 * b.rng.normal()), -1, f.shine);
+  }
+}
+
 // An ellipsoid's surface of radii r around c: n Gaussians facing out, coloured by
 // colour(local point) (uniform in direction, so a little denser at its narrow ends).
 template <class Colour>
@@ -1533,15 +1554,9 @@ EvalScene playroom(const EvalSetOptions& opt) {
     b.splat({x, wall_y - 0.01, z}, {0, -1, 0}, 0.02 * sz, c + noise(0.02), -1, 0.03);
   }
   b.depth_jitter = 0.004;
-  for (int i = 0, n = int(11000 * d); i < n; ++i) {  // oak floor boards, 14 cm wide, staggered joints
-    const Vec3 p{rng.range(-2.9, 3.1), rng.range(-2.0, wall_y), 0};
-    const int board = int(std::floor((p.x + 10) / 0.14));
-    const double along = p.y + 10 + 0.37 * board;
-    const bool seam = std::fmod(p.x + 10, 0.14) < 0.008 || std::fmod(along, 1.2) < 0.008;
-    const Vec3 c = seam ? Vec3{0.25, 0.17, 0.10}
-                        : Vec3{0.56, 0.40, 0.25} + Vec3{1, 0.8, 0.6} * (0.12 * cell_noise(board, int(along / 1.2)));
-    b.splat(p, {0, 0, 1}, 0.04 * sz, c + noise(0.015), -1, 0.06);
-  }
+  floor_boards(b, {-2.9, 3.1, -2.0, wall_y, 0.14, 0.37, 1.2, 0.008, {0.25, 0.17, 0.10}, {0.56, 0.40, 0.25},
+                   {1, 0.8, 0.6}, 0.12, 0.04 * sz, 0.06},
+               int(11000 * d));  // oak, 14 cm wide
   for (int i = 0, n = int(4500 * d); i < n; ++i) {  // a cream rug with a teal border and dots
     const Vec3 p{rng.range(-1.4, 1.4), rng.range(-1.2, 0.2), 0.006};
     const bool border = p.x < -1.28 || p.x > 1.28 || p.y < -1.08 || p.y > 0.08;
@@ -1769,15 +1784,9 @@ EvalScene office(const EvalSetOptions& opt) {
     b.splat({x, wall_y - 0.015, z}, {0, -1, 0}, 0.018 * sz, c, -1, 0.02);
   }
   b.depth_jitter = 0.004;
-  for (int i = 0, n = int(9000 * d); i < n; ++i) {  // pale ash floor boards, 12 cm wide, staggered joints
-    const Vec3 p{rng.range(-2.8, 3.4), rng.range(-1.0, wall_y), 0};
-    const int board = int(std::floor((p.x + 10) / 0.12));
-    const double along = p.y + 10 + 0.53 * board;
-    const bool seam = std::fmod(p.x + 10, 0.12) < 0.006 || std::fmod(along, 1.4) < 0.006;
-    const Vec3 c = seam ? Vec3{0.36, 0.30, 0.24}
-                        : Vec3{0.70, 0.60, 0.48} + Vec3{1, 0.85, 0.7} * (0.10 * cell_noise(board, int(along / 1.4)));
-    b.splat(p, {0, 0, 1}, 0.045 * sz, c + noise(0.015), -1, 0.05);
-  }
+  floor_boards(b, {-2.8, 3.4, -1.0, wall_y, 0.12, 0.53, 1.4, 0.006, {0.36, 0.30, 0.24}, {0.70, 0.60, 0.48},
+                   {1, 0.85, 0.7}, 0.10, 0.045 * sz, 0.05},
+               int(9000 * d));  // pale ash, 12 cm wide
   // The bookcase against the wall: walnut sides, shelves and back, five shelves of books.
   b.depth_jitter = 0.002;
   b.shape_jitter = 0.2;
