@@ -259,7 +259,7 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
         state[j] = kJoined;
         reached.push_back(j);
       });
-    beyond_counts = options.behind_click_gap > 0 && double(reached.size()) >= needed;
+    beyond_counts = options.behind_click_gap > 0 && in_masks > 0 && double(reached.size()) >= needed;
   }
   for (uint32_t seed : seeds) {
     if (state[seed] != kUnvisited || (inside[seed] && !behind[seed] && !(beyond_counts && beyond[seed])) ||
