@@ -254,11 +254,14 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
       }
     const size_t own = reached.size();
     for (size_t head = 0; head < reached.size() && (head < own || double(reached.size()) < needed); ++head)
-      touching.for_each(reached[head], [&](uint32_t j) {
-        if (state[j] != kUnvisited) return;
-        state[j] = kJoined;
-        reached.push_back(j);
-      });
+      touching.for_each(
+          reached[head],
+          [&](uint32_t j) {
+            if (state[j] != kUnvisited) return;
+            state[j] = kJoined;
+            reached.push_back(j);
+          },
+          kMaxBroadCells);  // a click's Gaussian far broader than the members is not searched cell by cell
     beyond_counts = options.behind_click_gap > 0 && in_masks > 0 && double(reached.size()) >= needed;
   }
   for (uint32_t seed : seeds) {
