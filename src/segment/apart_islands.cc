@@ -265,8 +265,10 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
     beyond_counts = options.behind_click_gap > 0 && in_masks > 0 && double(reached.size()) >= needed;
   }
   for (uint32_t seed : seeds) {
-    if (state[seed] != kUnvisited || (inside[seed] && !behind[seed] && !(beyond_counts && beyond[seed])) ||
-        scene.largest_scale(seed) > limit)
+    // A seed only behind the clicked surface needs that to count (its flood would decide nothing).
+    const bool beyond_seed = beyond_counts && beyond[seed];
+    if (state[seed] != kUnvisited || (inside[seed] && !behind[seed] && !beyond_seed) ||
+        (!outside[seed] && !behind[seed] && !beyond_seed) || scene.largest_scale(seed) > limit)
       continue;
     // Flood the set breadth first over the linkable Gaussians; it ends early when it joins what
     // a positive click's pixel shows (or a set that did), which for the rest of an object is
