@@ -51,6 +51,9 @@ const char* const kSegmentOptionsHelp =
     "                                clicked pixel shows, at least a quarter the size of the rest, is\n"
     "                                dropped while the set joined to the click is a fifth of what the\n"
     "                                clicked masks hold: a bookcase SAM merged with a plant before it)\n"
+    "  --keep-behind-pieces          keep the smaller sets seen mostly behind that lie nearer to a set\n"
+    "                                that left than to what the click joins (default: such pieces of\n"
+    "                                the bookcase, parted by the plant's leaves, leave with it)\n"
     "  --part-votes-against          a view whose mask is a part of the selection votes against the\n"
     "                                rest of it (default: the selection around the part is left open\n"
     "                                in that view, as around a part inside a larger candidate, while\n"
@@ -116,7 +119,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "no-far-behind-check", "keep-whole-islands", "keep-apart-islands", "keep-seen-behind", "keep-behind-click", "part-votes-against", "no-attached-parts", "keep-beyond-part", "no-negative-islands",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "no-far-behind-check", "keep-whole-islands", "keep-apart-islands", "keep-seen-behind", "keep-behind-click", "keep-behind-pieces", "part-votes-against", "no-attached-parts", "keep-beyond-part", "no-negative-islands",
                                           "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives", "sam-all-clicks", "no-negative-granularity"};
   return f;
@@ -153,6 +156,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.apart.enabled = !args.has("keep-apart-islands");
   s.session.apart.behind = !args.has("keep-seen-behind");
   if (args.has("keep-behind-click")) s.session.apart.behind_click_gap = 0;
+  s.session.apart.nearest_follow = !args.has("keep-behind-pieces");
   s.session.part_leaves_selection_open = !args.has("part-votes-against");
   s.session.attached_parts.enabled = !args.has("no-attached-parts");
   s.session.beyond_part.band = s.session.beyond_part.whole = !args.has("keep-beyond-part");

@@ -132,6 +132,76 @@ void mark_behind(const std::vector<SeenAt>& seen, const Camera& camera, const Ap
   }
 }
 
+// Sets mostly seen behind, each too small to leave on its own (`fragments` into `pieces`), that
+// lie nearer to what leaves (state kLeaving) than to the set joined to the clicks (kJoined):
+// the pieces of a bookcase the plant before it parts, apart from the piece that left and from
+// each other. A leaf of the plant behind the clicked one, apart from it, lies nearer the plant.
+// Distances are counted in cells of a grid over the selection's linkable Gaussians, its
+// longest side `cells` cells (26-neighbour steps from every cell each side holds). Appends
+// what leaves to `leave`; returns the number of sets.
+int follow_nearest(const GaussianScene& scene, const ZeroedArray<uint8_t>& state,
+                   const std::vector<uint32_t>& members, const std::vector<uint32_t>& pieces,
+                   const std::vector<std::pair<size_t, size_t>>& fragments, int cells, std::vector<uint32_t>& leave) {
+  if (members.empty() || cells < 2) return 0;
+  Vec3 lo = scene.position(members[0]), hi = lo;
+  for (uint32_t g : members) {
+    const Vec3 p = scene.position(g);
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  const double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-9}) / double(cells - 1);
+  const int nx = int((hi.x - lo.x) / side) + 1, ny = int((hi.y - lo.y) / side) + 1, nz = int((hi.z - lo.z) / side) + 1;
+  auto cell_of = [&](uint32_t g) {
+    const Vec3 p = scene.position(g);
+    const int x = std::clamp(int((p.x - lo.x) / side), 0, nx - 1), y = std::clamp(int((p.y - lo.y) / side), 0, ny - 1),
+              z = std::clamp(int((p.z - lo.z) / side), 0, nz - 1);
+    return (size_t(z) * size_t(ny) + size_t(y)) * size_t(nx) + size_t(x);
+  };
+  // Steps from the nearest cell holding what leaves, and what stays (breadth first).
+  auto steps_from = [&](auto holds) {
+    std::vector<int32_t> d(size_t(nx) * size_t(ny) * size_t(nz), -1);
+    std::vector<size_t> queue;
+    for (uint32_t g : members)
+      if (holds(g)) {
+        const size_t c = cell_of(g);
+        if (d[c] < 0) {
+          d[c] = 0;
+          queue.push_back(c);
+        }
+      }
+    for (size_t head = 0; head < queue.size(); ++head) {
+      const size_t c = queue[head];
+      const int x = int(c % size_t(nx)), y = int(c / size_t(nx) % size_t(ny)), z = int(c / (size_t(nx) * size_t(ny)));
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int X = x + dx, Y = y + dy, Z = z + dz;
+            if (X < 0 || Y < 0 || Z < 0 || X >= nx || Y >= ny || Z >= nz) continue;
+            const size_t e = (size_t(Z) * size_t(ny) + size_t(Y)) * size_t(nx) + size_t(X);
+            if (d[e] >= 0) continue;
+            d[e] = d[c] + 1;
+            queue.push_back(e);
+          }
+    }
+    return d;
+  };
+  const std::vector<int32_t> to_leaving = steps_from([&](uint32_t g) { return state[g] == kLeaving; });
+  const std::vector<int32_t> to_staying = steps_from([&](uint32_t g) { return state[g] == kJoined; });
+  int sets = 0;
+  for (const auto& [offset, count] : fragments) {
+    int32_t near_leaving = INT32_MAX, near_staying = INT32_MAX;
+    for (size_t i = offset; i < offset + count; ++i) {
+      const size_t c = cell_of(pieces[i]);
+      if (to_leaving[c] >= 0) near_leaving = std::min(near_leaving, to_leaving[c]);
+      if (to_staying[c] >= 0) near_staying = std::min(near_staying, to_staying[c]);
+    }
+    if (near_leaving >= near_staying) continue;
+    leave.insert(leave.end(), pieces.begin() + std::ptrdiff_t(offset), pieces.begin() + std::ptrdiff_t(offset + count));
+    ++sets;
+  }
+  return sets;
+}
+
 }  // namespace
 
 ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene& scene,
@@ -238,6 +308,8 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
   const LinkGrid touching(scene, members, link.link_sigmas);
   ZeroedArray<uint8_t> state(n);
   std::vector<uint32_t> frontier, leave;
+  std::vector<uint32_t> pieces;                    // the Gaussians of the sets mostly seen behind too small to leave ...
+  std::vector<std::pair<size_t, size_t>> fragments;  // ... each set's (offset, count) there
   // Behind the clicked surface counts only where the set joined to the clicks is an object's
   // worth of what the clicked masks hold: a skeleton's bones, each a set of its own, do not
   // stand for it. That set is flooded first, as far as that share (a seed's flood stops where
@@ -304,15 +376,44 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
                        double(frontier.size()) >= options.min_size_share * double(in_masks);
     // Seen through the object's gaps: most of what a clicked view sees of it, and a real share
     // of it, lies behind; an object's worth of Gaussians.
-    bool through = false;
+    bool mostly_behind = false;
     for (size_t v = 0; v < views && options.behind; ++v)
-      through = through || (seen_in[v] > 0 && double(seen_behind[v]) >= options.min_behind_share * double(seen_in[v]) &&
+      mostly_behind =
+          mostly_behind || (seen_in[v] > 0 && double(seen_behind[v]) >= options.min_behind_share * double(seen_in[v]) &&
                             double(seen_behind[v]) >= options.min_seen_share * double(frontier.size()));
-    through = through && double(frontier.size()) >= options.behind_size_share * double(selected_total - frontier.size());
-    if (!apart && !through) continue;
+    const bool through =
+        mostly_behind && double(frontier.size()) >= options.behind_size_share * double(selected_total - frontier.size());
+    if (!apart && !through) {
+      if (mostly_behind && options.nearest_follow) {  // too small to leave alone: decided by what it lies nearest
+        fragments.push_back({pieces.size(), frontier.size()});
+        pieces.insert(pieces.end(), frontier.begin(), frontier.end());
+      }
+      continue;
+    }
     for (uint32_t g : frontier) state[g] = kLeaving;
     leave.insert(leave.end(), frontier.begin(), frontier.end());
     ++out.islands;
+  }
+  if (!leave.empty() && !fragments.empty()) {
+    // The whole set joined to the clicks (flooded on from all the floods reached of it): what
+    // stays for certain.
+    std::vector<uint32_t> reached;
+    for (uint32_t g : members)
+      if (state[g] == kJoined) reached.push_back(g);
+    for (uint32_t g : click_gaussians)  // a click's own Gaussian may be too broad to be a member
+      if (state[g] == kJoined && scene.largest_scale(g) > limit) reached.push_back(g);
+    for (size_t head = 0; head < reached.size(); ++head)
+      touching.for_each(
+          reached[head],
+          [&](uint32_t j) {
+            if (state[j] != kUnvisited) return;
+            state[j] = kJoined;
+            reached.push_back(j);
+          },
+          kMaxBroadCells);
+    const size_t before = leave.size();
+    out.islands += follow_nearest(scene, state, members, pieces, fragments, options.nearest_cells, leave);
+    for (size_t i = before; i < leave.size(); ++i) state[leave[i]] = kLeaving;
   }
   // A broad Gaussian that touches what leaves and nothing that stays leaves with it: the
   // floor's broad Gaussians under a neighbour.

@@ -68,6 +68,11 @@ struct ApartOptions {
   // the set joined to the clicks holds min_click_set_share of what the clicked masks hold.
   double behind_click_gap = 0.05;
   double min_click_set_share = 0.2;
+  // A set mostly seen behind but too small to leave on its own leaves, once a set has, when
+  // it lies nearer to what leaves than to what stays (pieces of a bookcase that the plant's
+  // leaves part), measured in a grid of nearest_cells cells along the selection's longest side.
+  bool nearest_follow = true;
+  int nearest_cells = 64;
 };
 
 // One view with a positive click: the votes of its mask before any gate (the pixels the user's
@@ -93,7 +98,9 @@ struct ApartReport {
 // camera sees min_behind_share of what it sees behind (and min_seen_share of the set), and
 // which holds behind_size_share as many Gaussians as the rest of the selection; behind is
 // behind the gaps of nearer selected Gaussians, or behind_click_gap deeper than the clicked
-// surface where the set joined to the clicks holds min_click_set_share of in_masks. `min_weight`: the weight (in pixels)
+// surface where the set joined to the clicks holds min_click_set_share of in_masks. With
+// nearest_follow, once a set has left, a set seen behind that way but too small to leave alone
+// leaves when it lies nearer to what leaves than to the set joined to the clicks. `min_weight`: the weight (in pixels)
 // a Gaussian must blend in a view to count as seen there. Nothing leaves without clicked
 // views or click Gaussians.
 ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene& scene,

@@ -214,17 +214,30 @@ TEST(ApartIslands, WhatIsSeenBehindTheGapsStaysWhenItIsAPartOrJoined) {
 // A clicked object `half` m across each way from the axis, 1 m in front of a camera at the
 // origin, and 30 cm behind it a larger board (60 cm each way) that the clicked view sees mostly
 // around the object, not between its parts: a bookcase SAM merges with the plant before it.
+// With `pieces`, the board has a hole (x and y 30-50 cm) holding a piece of it apart from the
+// rest (3 x 3 Gaussians at 38-42 cm: books the leaves part from the others), and the object a
+// leaf 12 cm behind its plane, apart from it just beyond its edge (x 24-28 cm); both last.
 struct PlantBeforeBookcase {
   GaussianScene scene;
   size_t plant = 0;  // the clicked object's Gaussians come first
+  size_t board = 0;  // then the board's, up to here
   Camera camera;
-  explicit PlantBeforeBookcase(double half) {
+  explicit PlantBeforeBookcase(double half, bool pieces = false) {
     const int n = int(std::lround(half / 0.01));
     for (int i = -n; i <= n; ++i)
       for (int j = -n; j <= n; ++j) add_gaussian(scene, 0.01f * float(i), 0.01f * float(j), 1.f, 0.01f);
     plant = scene.size();
     for (int i = -30; i <= 30; ++i)
-      for (int j = -30; j <= 30; ++j) add_gaussian(scene, 0.02f * float(i), 0.02f * float(j), 1.3f, 0.02f);
+      for (int j = -30; j <= 30; ++j)
+        if (!pieces || i < 15 || i > 25 || j < 15 || j > 25)
+          add_gaussian(scene, 0.02f * float(i), 0.02f * float(j), 1.3f, 0.02f);
+    board = scene.size();
+    if (pieces)
+      for (int i = -1; i <= 1; ++i)
+        for (int j = -1; j <= 1; ++j) {
+          add_gaussian(scene, 0.40f + 0.02f * float(i), 0.40f + 0.02f * float(j), 1.3f, 0.02f);
+          add_gaussian(scene, 0.26f + 0.02f * float(i), 0.02f * float(j), 1.12f, 0.01f);
+        }
     camera.width = camera.height = 400;
     camera.fx = camera.fy = 400;
     camera.cx = camera.cy = 200;
@@ -269,6 +282,29 @@ TEST(ApartIslands, WhatLiesBehindAClickedPieceStays) {
   unguarded.min_click_set_share = 0;
   EXPECT_EQ(drop_apart_islands(selection, piece.scene, {piece.votes(view)}, {0}, 0.05, unguarded, IslandOptions{}).removed,
             piece.scene.size() - piece.plant);
+}
+
+TEST(ApartIslands, PiecesOfWhatLeftThatLieNearerToItLeaveWithIt) {
+  // The board leaves as above. Its piece in the hole (9 Gaussians, far under a quarter of the
+  // rest) lies 10 cm from the board and 20 cm from the object: it leaves with the board. The
+  // object's leaf behind its plane lies nearer the object (12 cm, against 18 cm to the board)
+  // and stays.
+  const PlantBeforeBookcase p(0.2, true);
+  View view({}, {});
+  std::vector<bool> selection(p.scene.size(), true);
+  const ApartReport r = drop_apart_islands(selection, p.scene, {p.votes(view)}, {0}, 0.05, on(), IslandOptions{});
+  std::printf("[ apart islands ] the board and its piece: %zu Gaussians left in %d sets\n", r.removed, r.islands);
+  for (size_t i = 0; i < p.scene.size(); ++i) {
+    const bool leaf = i >= p.board && (i - p.board) % 2 == 1;  // the pieces alternate: the board's, the leaf's
+    EXPECT_EQ(selection[i], i < p.plant || leaf) << i;
+  }
+  EXPECT_EQ(r.islands, 2);
+  // Without following the nearest, the board's piece stays too small to leave on its own.
+  ApartOptions alone = on();
+  alone.nearest_follow = false;
+  std::vector<bool> kept(p.scene.size(), true);
+  EXPECT_EQ(drop_apart_islands(kept, p.scene, {p.votes(view)}, {0}, 0.05, alone, IslandOptions{}).removed,
+            p.board - p.plant);
 }
 
 }  // namespace
