@@ -127,6 +127,7 @@ int run_eval_ablation(const Args& args) {
       {"- selection open beyond a part", [](segment::SessionOptions& o) { o.part_leaves_selection_open = false; }},
       {"- behind the clicked surface", [](segment::SessionOptions& o) { o.apart.behind_click_gap = 0; }},
       {"- pieces near what left", [](segment::SessionOptions& o) { o.apart.nearest_follow = false; }},
+      {"- wide views vouch for parts", [](segment::SessionOptions& o) { o.attached_parts.min_view_overlap = 0; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

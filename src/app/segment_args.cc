@@ -61,6 +61,9 @@ const char* const kSegmentOptionsHelp =
     "  --no-attached-parts           select only what most views' masks hold (default: also what a\n"
     "                                minority of the views masks with the object where it attaches to the\n"
     "                                selection: a broom's bristles, a kettle's spout)\n"
+    "  --wide-views-vouch            let views whose masks lie mostly off the selection (far larger\n"
+    "                                than the object) vouch for attached parts too (default: they do\n"
+    "                                not: the books beside a clicked globe stay out)\n"
     "  --keep-beyond-part            keep in a view's mask, and leave open between part and whole, what\n"
     "                                lies as deep as the background its part shows through its gaps\n"
     "                                (default: taken out; SAM's masks around foliage take in the\n"
@@ -119,7 +122,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "no-far-behind-check", "keep-whole-islands", "keep-apart-islands", "keep-seen-behind", "keep-behind-click", "keep-behind-pieces", "part-votes-against", "no-attached-parts", "keep-beyond-part", "no-negative-islands",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "no-far-behind-check", "keep-whole-islands", "keep-apart-islands", "keep-seen-behind", "keep-behind-click", "keep-behind-pieces", "part-votes-against", "no-attached-parts", "wide-views-vouch", "keep-beyond-part", "no-negative-islands",
                                           "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives", "sam-all-clicks", "no-negative-granularity"};
   return f;
@@ -159,6 +162,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.apart.nearest_follow = !args.has("keep-behind-pieces");
   s.session.part_leaves_selection_open = !args.has("part-votes-against");
   s.session.attached_parts.enabled = !args.has("no-attached-parts");
+  if (args.has("wide-views-vouch")) s.session.attached_parts.min_view_overlap = 0;
   s.session.beyond_part.band = s.session.beyond_part.whole = !args.has("keep-beyond-part");
   s.session.negative_islands = !args.has("no-negative-islands");
   s.session.see_through = !args.has("no-see-through");

@@ -11,8 +11,16 @@ size_t add_attached_parts(std::vector<bool>& selection, const VoteAccumulator& v
                           const std::vector<uint32_t>& candidates, const std::vector<uint8_t>& set_aside,
                           const std::vector<uint32_t>& apart, const std::vector<bool>& excluded,
                           const GaussianScene& scene, const CentreIndex& index, const AttachedPartsOptions& o,
-                          int threads) {
+                          int threads, const std::vector<ViewVotes>* wide) {
   if (!o.enabled) return 0;
+  // What the wide views voted for each candidate (both lists ascending).
+  std::vector<int64_t> wide_weight(wide && !wide->empty() ? candidates.size() : 0, 0);
+  if (!wide_weight.empty())
+    for (const ViewVotes& v : *wide)
+      for (size_t i = 0, c = 0; i < v.index.size(); ++i) {
+        while (c < candidates.size() && candidates[c] < v.index[i]) ++c;
+        if (c < candidates.size() && candidates[c] == v.index[i]) wide_weight[c] += v.weight[i];
+      }
   const int64_t min_fixed = VoteAccumulator::min_fixed(min_total);
   const auto& P = votes.positive();
   const auto& A = votes.total();
@@ -22,10 +30,11 @@ size_t add_attached_parts(std::vector<bool>& selection, const VoteAccumulator& v
   // Open: the Gaussians that may still join (cleared as they join or are claimed).
   std::vector<bool> open(selection.size(), false);
   std::vector<uint32_t> listed;
-  for (uint32_t j : candidates) {
+  for (size_t c = 0; c < candidates.size(); ++c) {
+    const uint32_t j = candidates[c];
     if (selection[j] || apart_flag[j] || (!set_aside.empty() && set_aside[j] >= o.min_set_aside_views) || (!excluded.empty() && excluded[j]))
       continue;
-    const double a = double(A[j]), p = double(P[j]);
+    const double a = double(A[j]), p = double(P[j] - (wide_weight.empty() ? 0 : wide_weight[c]));
     if (A[j] <= 0 || A[j] < min_fixed || p <= o.min_plain_share * a || p <= o.min_share * (a - double(W[j]))) continue;
     open[j] = true;
     listed.push_back(j);

@@ -40,6 +40,11 @@ struct AttachedPartsOptions {
   // scored 80.2 when one view kept them out, 86.0 with two (90.6 with three, which also let
   // more of the floor join the rug).
   int min_set_aside_views = 2;
+  // A view whose mask lies less than this share on the selection (it takes in far more than
+  // the object: the shelf of books beside a clicked globe, a mask nine times the globe's)
+  // does not vouch for a part: its votes do not count in P here. The broom's whole-broom
+  // views lie half on its handle.
+  double min_view_overlap = 0.25;
 };
 
 // Adds to `selection` the attached parts. `candidates`: every Gaussian with a positive vote
@@ -47,11 +52,12 @@ struct AttachedPartsOptions {
 // depth layers or background gate set it aside (may be empty). `apart`: the Gaussians whole
 // islands dropped (ascending). `excluded`: one flag per Gaussian never to select (may be
 // empty). `index` is built over `scene`. Returns the number added. `threads`: for the
-// searches of what touches the selection (0 = all cores; the same result).
+// searches of what touches the selection (0 = all cores; the same result). `wide` (optional):
+// the positive votes of views whose masks lie mostly off the selection, taken from P here.
 size_t add_attached_parts(std::vector<bool>& selection, const VoteAccumulator& votes, double min_total,
                           const std::vector<uint32_t>& candidates, const std::vector<uint8_t>& set_aside,
                           const std::vector<uint32_t>& apart, const std::vector<bool>& excluded,
                           const GaussianScene& scene, const CentreIndex& index, const AttachedPartsOptions& options,
-                          int threads = 1);
+                          int threads = 1, const std::vector<ViewVotes>* wide = nullptr);
 
 }  // namespace isegman::segment

@@ -123,5 +123,31 @@ TEST(AttachedParts, ANeighbourSetApartClaimsWhatAttachesToIt) {
   EXPECT_FALSE(specks.selection[49]);
 }
 
+TEST(AttachedParts, WhatOnlyViewsFarLargerThanTheObjectMaskDoesNotJoin) {
+  // The parts above, where the votes for the touching part (10..14) came from views whose
+  // masks lie mostly off the selection (a shelf of books masked with the clicked globe):
+  // without their votes it holds none, and it stays out; so does what joined through it
+  // (25..29, still a candidate on its own shares but attached only through 10..14).
+  Line l = parts();
+  const CentreIndex index(l.scene);
+  ViewVotes shelf;
+  for (uint32_t i = 10; i < 15; ++i) {
+    shelf.index.push_back(i);
+    shelf.weight.push_back(int64_t(0.36 * double(int64_t(1) << 24)));
+  }
+  const std::vector<ViewVotes> wide{shelf};
+  const size_t added =
+      add_attached_parts(l.selection, l.votes, 0.0, l.candidates, {}, {}, {}, l.scene, index, on(), 1, &wide);
+  std::printf("[ attached ] with the wide views' votes taken out: %zu added\n", added);
+  EXPECT_EQ(added, 0u);
+  EXPECT_EQ(count(l.selection), 10u);
+  // Without wide views (or an empty list) the part joins as before.
+  Line same = parts();
+  const std::vector<ViewVotes> none;
+  EXPECT_EQ(add_attached_parts(same.selection, same.votes, 0.0, same.candidates, {}, {}, {}, same.scene, index, on(), 1,
+                               &none),
+            10u);
+}
+
 }  // namespace
 }  // namespace isegman::segment

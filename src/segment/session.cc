@@ -759,6 +759,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
     for (const UserClick& c : next.clicks)
       if (c.click.label == 1) user_positive[size_t(c.view)] = 1;
   std::vector<ViewVotes> clicked_inside(V);
+  // The votes of the views whose masks lie mostly off the selection (far larger than it): they
+  // do not vouch for an attached part (AttachedPartsOptions::min_view_overlap).
+  std::vector<ViewVotes> wide_votes;
 
   // Votes of one view's mask (`mask`: vs.mask as an image at the view's resolution, built
   // once per view for inspection, votes, the background gate and the centre evidence),
@@ -845,6 +848,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
                                 o.centre_rule.hidden_margin_pixels(view.camera), o.threads);
       acc.add(vs.positive, all_votes_of_view(k), +1, &vs.neutral, &centred, &whole, o.threads);
       live.add_support(vs.positive.index);
+      if (o.attached_parts.enabled && vs.inspected && vs.overlap < o.attached_parts.min_view_overlap)
+        wide_votes.push_back(vs.positive);
     }
     if (o.whole_neutral) {
       TimeInto timed{part.band};
@@ -909,6 +914,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     acc = VoteAccumulator(scene_.size());
     set_aside.clear();
     for (ViewVotes& v : clicked_inside) v = ViewVotes{};
+    wide_votes.clear();
     band_ledger = BandLedger(scene_);
     live.reset(scene_.size(), {o.tau, min_weight, o.centre_rule, {o.whole_neutral, o.whole_min_share}}, &excluded_);
     first = true;
@@ -1258,7 +1264,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     for (size_t j = 0; j < before_islands.size(); ++j)
       if (before_islands[j] && !next.selection[j]) apart.push_back(uint32_t(j));
     rep.attached_parts = add_attached_parts(next.selection, acc, min_weight, live.support(), set_aside, apart,
-                                            excluded_, scene_, neighbours(), o.attached_parts, o.threads);
+                                            excluded_, scene_, neighbours(), o.attached_parts, o.threads, &wide_votes);
   }
   if (o.negative_islands && any_negative) {
     TimeInto timed{part.decide};
