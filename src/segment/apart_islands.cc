@@ -315,6 +315,19 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
   // stand for it. That set is flooded first, as far as that share (a seed's flood stops where
   // it meets it), and what touches a click's own Gaussian joins even where that Gaussian is too
   // broad to link.
+  // Joins to the clicks what touches `queue` (appended as it is reached) while more(head)
+  // holds. A click's Gaussian far broader than the members is not searched cell by cell.
+  auto join_from = [&](std::vector<uint32_t>& queue, auto more) {
+    for (size_t head = 0; head < queue.size() && more(head); ++head)
+      touching.for_each(
+          queue[head],
+          [&](uint32_t j) {
+            if (state[j] != kUnvisited) return;
+            state[j] = kJoined;
+            queue.push_back(j);
+          },
+          kMaxBroadCells);
+  };
   bool beyond_counts = false;
   {
     const double needed = options.behind_click_gap > 0 ? options.min_click_set_share * double(in_masks) : 0.0;
@@ -325,15 +338,7 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
         reached.push_back(g);
       }
     const size_t own = reached.size();
-    for (size_t head = 0; head < reached.size() && (head < own || double(reached.size()) < needed); ++head)
-      touching.for_each(
-          reached[head],
-          [&](uint32_t j) {
-            if (state[j] != kUnvisited) return;
-            state[j] = kJoined;
-            reached.push_back(j);
-          },
-          kMaxBroadCells);  // a click's Gaussian far broader than the members is not searched cell by cell
+    join_from(reached, [&](size_t head) { return head < own || double(reached.size()) < needed; });
     beyond_counts = options.behind_click_gap > 0 && in_masks > 0 && double(reached.size()) >= needed;
   }
   for (uint32_t seed : seeds) {
@@ -402,15 +407,7 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
       if (state[g] == kJoined) reached.push_back(g);
     for (uint32_t g : click_gaussians)  // a click's own Gaussian may be too broad to be a member
       if (state[g] == kJoined && scene.largest_scale(g) > limit) reached.push_back(g);
-    for (size_t head = 0; head < reached.size(); ++head)
-      touching.for_each(
-          reached[head],
-          [&](uint32_t j) {
-            if (state[j] != kUnvisited) return;
-            state[j] = kJoined;
-            reached.push_back(j);
-          },
-          kMaxBroadCells);
+    join_from(reached, [](size_t) { return true; });
     const size_t before = leave.size();
     out.islands += follow_nearest(scene, state, members, pieces, fragments, options.nearest_cells, leave);
     for (size_t i = before; i < leave.size(); ++i) state[leave[i]] = kLeaving;
