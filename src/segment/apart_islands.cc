@@ -157,7 +157,8 @@ int follow_nearest(const GaussianScene& scene, const ZeroedArray<uint8_t>& state
               z = std::clamp(int((p.z - lo.z) / side), 0, nz - 1);
     return (size_t(z) * size_t(ny) + size_t(y)) * size_t(nx) + size_t(x);
   };
-  // Steps from the nearest cell holding what leaves, and what stays (breadth first).
+  // Steps from the nearest cell holding what leaves, and what stays (breadth first; empty
+  // where no member is either).
   auto steps_from = [&](auto holds) {
     std::vector<int32_t> d(size_t(nx) * size_t(ny) * size_t(nz), -1);
     std::vector<size_t> queue;
@@ -183,10 +184,14 @@ int follow_nearest(const GaussianScene& scene, const ZeroedArray<uint8_t>& state
             queue.push_back(e);
           }
     }
+    if (queue.empty()) d.clear();
     return d;
   };
   const std::vector<int32_t> to_leaving = steps_from([&](uint32_t g) { return state[g] == kLeaving; });
   const std::vector<int32_t> to_staying = steps_from([&](uint32_t g) { return state[g] == kJoined; });
+  // Nothing linkable joined to the clicks (their Gaussians too broad to link): no nearness to
+  // compare with, and nothing follows.
+  if (to_leaving.empty() || to_staying.empty()) return 0;
   int sets = 0;
   for (const auto& [offset, count] : fragments) {
     int32_t near_leaving = INT32_MAX, near_staying = INT32_MAX;
