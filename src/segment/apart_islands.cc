@@ -315,11 +315,6 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
   std::vector<uint32_t> frontier, leave;
   std::vector<uint32_t> pieces;                    // the Gaussians of the sets mostly seen behind too small to leave ...
   std::vector<std::pair<size_t, size_t>> fragments;  // ... each set's (offset, count) there
-  // Behind the clicked surface counts only where the set joined to the clicks is an object's
-  // worth of what the clicked masks hold: a skeleton's bones, each a set of its own, do not
-  // stand for it. That set is flooded first, as far as that share (a seed's flood stops where
-  // it meets it), and what touches a click's own Gaussian joins even where that Gaussian is too
-  // broad to link.
   // Joins to the clicks what touches `queue` (appended as it is reached) while more(head)
   // holds. A click's Gaussian far broader than the members is not searched cell by cell.
   auto join_from = [&](std::vector<uint32_t>& queue, auto more) {
@@ -333,6 +328,11 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
           },
           kMaxBroadCells);
   };
+  // Behind the clicked surface counts only where the set joined to the clicks is an object's
+  // worth of what the clicked masks hold: a skeleton's bones, each a set of its own, do not
+  // stand for it. That set is flooded first, as far as that share (a seed's flood stops where
+  // it meets it), and what touches a click's own Gaussian joins even where that Gaussian is too
+  // broad to link.
   bool beyond_counts = false;
   {
     const double needed = options.behind_click_gap > 0 ? options.min_click_set_share * double(in_masks) : 0.0;
