@@ -322,7 +322,8 @@ int run_eval_ablation(const Args& args) {
         segment::MaskScore sc = score();
         if (corrective > 0) {
           const int view = segment::view_of_camera(*session, t->camera);
-          const Camera& cam = session->views()[size_t(view)].camera;
+          // By value: a click may add a view (see_through.h), which moves the session's views.
+          const Camera cam = session->views()[size_t(view)].camera;
           const Image truth_mask = segment::selection_mask(s->scene.bundle.gaussians, cam, truth, cam.width, cam.height);
           for (auto& after : per_after) after.push_back(sc.iou);  // the later counts replaced as clicks come
           for (int c = 0; c < corrective; ++c) {
