@@ -545,7 +545,8 @@ Corrected after_corrective_clicks(const std::string& name, const SessionOptions&
   out.session = segment_from_prompts(s->scene.bundle, t.camera, {task_clicks(*s, t, 1)[0]}, sam_or_null(), so,
                                      view_options(), "all");
   const int view = view_of_camera(*out.session, t.camera);
-  const Camera& cam = out.session->views()[size_t(view)].camera;
+  // By value: a click may add a view (see_through.h), which moves the session's views.
+  const Camera cam = out.session->views()[size_t(view)].camera;
   const std::vector<bool> truth = demo_object_mask(s->scene, t.object);
   const Image truth_mask = selection_mask(s->scene.bundle.gaussians, cam, truth, cam.width, cam.height);
   for (int i = 0; i < n; ++i) {
