@@ -545,15 +545,22 @@ RoundReport Session::run_round(State& next, const State& prev) {
       float united_score = 0;
       std::vector<float> united_low;
       std::vector<const Mask*> own;  // each click's mask alone
+      const bool joint_surroundings = surroundings(results[which[i]]->mask(), o.min_surroundings_share);
       for (size_t c = 0; c < prompts[i].size(); ++c, ++j) {
         const models::SegmentResult& r = *single[j];
         const int pick = o.object_prior ? object_candidate(r, {prompts[i][c]}, o.min_object_score, o.min_surroundings_share)
                                         : r.mask_index;
         const Mask& m = r.candidates[size_t(pick)];
+        // Where the joint answer is an object, a click whose own mask is the surroundings (a
+        // later click on a rug's fringe, alone the floor) says nothing about it: it neither
+        // joins the union nor makes the joint answer a part. (Where the joint answer is the
+        // surroundings too, a workbench clicked twice, the union of them all stands.)
+        if (!joint_surroundings && surroundings(m, o.min_surroundings_share)) continue;
+        const bool first_own = own.empty();
         own.push_back(&m);
         const float score = r.candidate_scores[size_t(pick)];
         const std::vector<float>& low = r.candidate_low_res[size_t(pick)];
-        if (c == 0) {
+        if (first_own) {
           united = m;
           united_score = score;
           united_low = low;
@@ -563,6 +570,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         united_score = std::min(united_score, score);
         for (size_t p = 0; p < low.size() && p < united_low.size(); ++p) united_low[p] = std::max(united_low[p], low[p]);
       }
+      if (own.empty()) continue;  // every click alone the surroundings, the joint answer not: it stands
       // SAM's joint answer stands unless it looks like the surroundings, is far larger than
       // what the clicks segment alone, or is a part of what each click segments alone.
       const models::SegmentResult& joint = *results[which[i]];
@@ -573,8 +581,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         if (!part_of_each) break;
         part_of_each = agreement(together, *m).both >= 0.9 * double(joint_area);
       }
-      if (!surroundings(together, o.min_surroundings_share) &&
-          double(joint_area) <= o.max_joint_growth * double(union_area) && !part_of_each)
+      if (!joint_surroundings && double(joint_area) <= o.max_joint_growth * double(union_area) && !part_of_each)
         continue;
       models::SegmentResult merged;
       merged.score = united_score;

@@ -176,7 +176,9 @@ struct SessionOptions {
   double max_joint_growth = 3;
   // ... and the union too where the joint answer is a part of what each click segments alone
   // (each holds >= 90 % of it) and their union is at least min_union_growth times larger: two
-  // clicks on a chair's back gave its back in every view, either click alone the chair.
+  // clicks on a chair's back gave its back in every view, either click alone the chair. Where
+  // the joint answer is not the surroundings, a click whose own mask looks like them counts in
+  // neither (a later click on a rug's fringe, alone the floor, made the floor every view's mask).
   double min_union_growth = 1.5;
   // A positive click on something seen through a nearer layer's gaps segments a render of
   // its view without that layer (see_through.h), added as a view of its own.
