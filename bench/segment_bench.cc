@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -130,6 +131,48 @@ void BM_Interaction(benchmark::State& state) {
   state.counters["embedding_ms_per_view"] = f->embed_ms_per_view;
 }
 BENCHMARK(BM_Interaction)->Arg(1)->Arg(0)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+
+// A negative click on the clicked object itself, at its rendered pixel farthest from the
+// positive click, after that click: the negative click's island holds the positive click.
+// Arg 1: the default (negative islands on); arg 0: without negative islands (what the
+// island flood costs). Only the negative round is timed.
+void BM_NegativeClick(benchmark::State& state) {
+  Fixture* f = fixture(state);
+  if (!f) return;
+  segment::SessionOptions so;
+  so.negative_islands = state.range(0) == 1;
+  f->session->set_options(so);
+  f->session->click(f->view, f->click);
+  const Image cov = f->session->selection_coverage(f->view);
+  double best = -1;
+  Click negative = f->click;
+  for (int y = 0; y < cov.height; ++y)
+    for (int x = 0; x < cov.width; ++x) {
+      const double d = std::hypot(x + 0.5 - f->click.x, y + 0.5 - f->click.y);
+      if (cov.at(x, y) > 0.5f && d > best) {
+        best = d;
+        negative = pixel_centre_click(x, y, 0);
+      }
+    }
+  f->session->undo();
+  segment::RoundReport last;
+  size_t before = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    before = f->session->click(f->view, f->click).selected;
+    state.ResumeTiming();
+    last = f->session->click(f->view, negative);
+    state.PauseTiming();
+    f->session->undo();
+    f->session->undo();
+    state.ResumeTiming();
+  }
+  state.counters["selected_before"] = double(before);
+  state.counters["selected"] = double(last.selected);
+  state.counters["left_in_3d"] = double(last.negative_islands);
+  state.counters["voting_ms"] = last.ms_voting;
+}
+BENCHMARK(BM_NegativeClick)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 // A click on a real capture: the fern fixture's plant in image010 (the click the accuracy
 // issue names), 20 views at 504x378, embeddings cached. Real Gaussians overlap far more per
