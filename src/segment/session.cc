@@ -310,6 +310,16 @@ int Session::see_through_view(int view, const Click& c) {
   const SegmentView& base = views_[size_t(view)];
   const Occluders occ = find_occluders(scene_, base.frame, c.x, c.y, options_.see_through_options, options_.threads);
   if (!occ.found) return view;
+  // A view already peeled from this one that shows the clicked surface at the click is this
+  // click's view too (a second click on the ball behind the fence finds a cut a little
+  // deeper): a second, nearly identical view would vote the same evidence twice. It is so
+  // even where SAM at the click now takes the nearer things in (a later click on the cone
+  // behind a cage's mesh, where SAM masks the cage): an earlier click already saw through.
+  const std::pair<int, float> key{view, float(occ.cut)};
+  for (const auto& [k, index] : peeled_)
+    if (k == key || (k.first == view && shows_surface(views_[size_t(index)], c, occ.surface,
+                                                      options_.see_through_options.band)))
+      return index;
   // Where SAM already takes the nearer things in with the clicked surface (the near leaves
   // of the same plant), they are part of what the user means: no peeling.
   const models::SegmentResult direct = sam_->decode(base.embedding, {c});
@@ -324,14 +334,6 @@ int Session::see_through_view(int view, const Click& c) {
     for (uint32_t p : occ.pixels) selected += p < covered.data.size() && covered.data[p] > 0.5f;
     if (double(selected) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) return view;
   }
-  // A view already peeled from this one that shows the clicked surface at the click is this
-  // click's view too (a second click on the ball behind the fence finds a cut a little
-  // deeper): a second, nearly identical view would vote the same evidence twice.
-  const std::pair<int, float> key{view, float(occ.cut)};
-  for (const auto& [k, index] : peeled_)
-    if (k == key || (k.first == view && shows_surface(views_[size_t(index)], c, occ.surface,
-                                                      options_.see_through_options.band)))
-      return index;
   ViewOptions vo = options_.see_through_views;
   vo.use_photos = false;  // a photo cannot be peeled: the render can
   vo.max_side = std::max(base.camera.width, base.camera.height);
