@@ -652,11 +652,11 @@ TEST(HardCases, ANegativeClickOnTheGreyBoxTakesItOutOfTheWateringCan) {
 TEST(HardCases, ALaterClickOnTheRugsFringeDoesNotTurnItIntoTheFloor) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // One click on the rug, a negative click on the floor beside it, then a positive click on
-  // the rug's fringe (the clicks a corrective run gave; pixels of the clicked view). That last
-  // click alone segments the floor (the surroundings), and the joint answer to both positive
-  // clicks, the rug, was "a part of what each click segments alone": their union, the floor,
-  // became every such view's mask (11.9). A click whose own mask is the surroundings no
-  // longer counts there.
+  // the rug's fringe (the clicks a corrective run gave in a build with the negative parting
+  // the README tried; pixels of the clicked view). That last click alone segments the floor
+  // (the surroundings), and the joint answer to both positive clicks, the rug, was "a part of
+  // what each click segments alone": their union, the floor, became every such view's mask
+  // (11.9). Where the joint answer is not the surroundings, such a click no longer counts.
   const Outcome r = run("lounge/rug", SessionOptions(), {{176.5, 276.5, 0}, {263.5, 286.5, 1}}, kAblation);
   std::printf("[ hard ] lounge/rug: after a negative click beside it and a positive one on its fringe %.1f%% (%zu "
               "selected, %zu scenery)\n",

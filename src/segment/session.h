@@ -314,7 +314,8 @@ class Session {
   std::vector<bool> eligible(std::vector<bool> selection) const;
   // The view a positive click in `view` is segmented in: `view` itself, or a render of it
   // without the occluders in front of the clicked surface (made once per view and depth; one
-  // already peeled that shows the clicked surface at the click is taken before any other test).
+  // already peeled that shows the clicked surface at the click is taken before the tests of
+  // SAM's mask at the click and of the selection so far).
   int see_through_view(int view, const Click& click);
 
   const GaussianScene& scene_;
