@@ -547,7 +547,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
       float united_score = 0;
       std::vector<float> united_low;
       std::vector<const Mask*> own;  // each click's mask alone
-      const bool joint_surroundings = surroundings(results[which[i]]->mask(), o.min_surroundings_share);
+      const models::SegmentResult& joint = *results[which[i]];  // SAM's one answer to all of them
+      const Mask& together = joint.mask();
+      const bool joint_surroundings = surroundings(together, o.min_surroundings_share);
       for (size_t c = 0; c < prompts[i].size(); ++c, ++j) {
         const models::SegmentResult& r = *single[j];
         const int pick = o.object_prior ? object_candidate(r, {prompts[i][c]}, o.min_object_score, o.min_surroundings_share)
@@ -575,8 +577,6 @@ RoundReport Session::run_round(State& next, const State& prev) {
       if (own.empty()) continue;  // every click alone the surroundings, the joint answer not: it stands
       // SAM's joint answer stands unless it looks like the surroundings, is far larger than
       // what the clicks segment alone, or is a part of what each click segments alone.
-      const models::SegmentResult& joint = *results[which[i]];
-      const Mask& together = joint.mask();
       const size_t joint_area = mask_area(together), union_area = mask_area(united);
       bool part_of_each = double(union_area) >= o.min_union_growth * double(joint_area) && joint_area > 0;
       for (const Mask* m : own) {
