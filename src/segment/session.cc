@@ -768,8 +768,11 @@ RoundReport Session::run_round(State& next, const State& prev) {
     for (const UserClick& c : next.clicks)
       if (c.click.label == 1) user_positive[size_t(c.view)] = 1;
   std::vector<ViewVotes> clicked_inside(V);
+  const bool any_negative =
+      std::any_of(next.clicks.begin(), next.clicks.end(), [](const UserClick& c) { return c.click.label == 0; });
   // The votes of the views whose masks lie mostly off the selection (far larger than it): they
-  // do not vouch for an attached part (AttachedPartsOptions::min_view_overlap).
+  // do not vouch for an attached part (AttachedPartsOptions::min_view_overlap). Not kept in a
+  // round with a negative click, where attached parts do not run.
   std::vector<ViewVotes> wide_votes;
 
   // Votes of one view's mask (`mask`: vs.mask as an image at the view's resolution, built
@@ -857,7 +860,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
                                 o.centre_rule.hidden_margin_pixels(view.camera), o.threads);
       acc.add(vs.positive, all_votes_of_view(k), +1, &vs.neutral, &centred, &whole, o.threads);
       live.add_support(vs.positive.index);
-      if (o.attached_parts.enabled && vs.inspected && vs.overlap < o.attached_parts.min_view_overlap)
+      if (o.attached_parts.enabled && !any_negative && vs.inspected && vs.overlap < o.attached_parts.min_view_overlap)
         wide_votes.push_back(vs.positive);
     }
     if (o.whole_neutral) {
@@ -1263,8 +1266,6 @@ RoundReport Session::run_round(State& next, const State& prev) {
     rep.apart_islands =
         drop_apart_islands(next.selection, scene_, clicked, at_clicks, min_weight, o.apart, o.whole_islands).removed;
   }
-  const bool any_negative =
-      std::any_of(next.clicks.begin(), next.clicks.end(), [](const UserClick& c) { return c.click.label == 0; });
   // Not in a round with a negative click: the user is taking things out, and a minority of
   // the views' masks must not put back what touches the object (the rest of a row of books).
   if (o.attached_parts.enabled && !any_negative) {
