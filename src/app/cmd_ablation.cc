@@ -128,6 +128,10 @@ int run_eval_ablation(const Args& args) {
       {"- behind the clicked surface", [](segment::SessionOptions& o) { o.apart.behind_click_gap = 0; }},
       {"- pieces near what left", [](segment::SessionOptions& o) { o.apart.nearest_follow = false; }},
       {"- wide views vouch for parts", [](segment::SessionOptions& o) { o.attached_parts.min_view_overlap = 0; }},
+      {"- enclosures seen through", [](segment::SessionOptions& o) {
+         o.see_through_options.min_peeled_share = 0;
+         o.consensus_on_peeled = true;
+       }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

@@ -72,6 +72,11 @@ const char* const kSegmentOptionsHelp =
     "                                takes out the selected island its pixel shows, where touching\n"
     "                                Gaussians do not join that island to a positive click's)\n"
     "  --no-see-through              segment what a click sees through gaps as the render shows it\n"
+    "  --no-see-through-enclosures   never see through nearer things that SAM's mask at the click holds\n"
+    "                                (default: do where, rendered without them, SAM at the click masks\n"
+    "                                under a quarter of that mask: a cone inside a mesh cage, not a\n"
+    "                                plant's near leaves), and let granularity consensus run on a\n"
+    "                                peeled first view (default: not; its larger whole is the cage)\n"
     "  --no-coherence                select by vote share > tau alone (no nearest-neighbour decision)\n"
     "  --no-centre-rule              no selection of shares in (0.5, tau] by their centres lying in the masks\n"
     "  --overlap-inspection          IIM accepts a mask that merely overlaps the selection\n"
@@ -122,7 +127,7 @@ const std::set<std::string>& segment_value_flags() {
 }
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
-                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "no-far-behind-check", "keep-whole-islands", "keep-apart-islands", "keep-seen-behind", "keep-behind-click", "keep-behind-pieces", "part-votes-against", "no-attached-parts", "wide-views-vouch", "keep-beyond-part", "no-negative-islands",
+                                          "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-see-through-enclosures", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "no-far-behind-check", "keep-whole-islands", "keep-apart-islands", "keep-seen-behind", "keep-behind-click", "keep-behind-pieces", "part-votes-against", "no-attached-parts", "wide-views-vouch", "keep-beyond-part", "no-negative-islands",
                                           "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives", "sam-all-clicks", "no-negative-granularity"};
   return f;
@@ -166,6 +171,10 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.beyond_part.band = s.session.beyond_part.whole = !args.has("keep-beyond-part");
   s.session.negative_islands = !args.has("no-negative-islands");
   s.session.see_through = !args.has("no-see-through");
+  if (args.has("no-see-through-enclosures")) {
+    s.session.see_through_options.min_peeled_share = 0;
+    s.session.consensus_on_peeled = true;
+  }
   s.session.agreement_inspection = !args.has("overlap-inspection");
   s.session.choose_candidate = args.has("candidate-choice");
   s.session.granularity_consensus = !args.has("no-granularity-consensus");

@@ -21,7 +21,11 @@ struct SeeThroughOptions {
   double gap = 0.02;          // relative depth by which an occluder is nearer than the clicked surface
   double band = 0.15;         // relative depth behind the clicked surface that still counts as it
   double min_share = 0.05;    // flanked occluder pixels needed, share of the window's pixels
-  double max_in_mask = 0.5;   // no peeling when SAM's mask at the click already holds this share of them
+  double max_in_mask = 0.5;   // no peeling when SAM's mask at the click already holds this share of them...
+  // ... unless, rendered without them, what SAM segments at the click is under this share of
+  // that mask: then the mask was an enclosure around a smaller thing (a cone inside a mesh
+  // cage), not the clicked thing with its own near parts (a plant's near leaves: 45 % and more).
+  double min_peeled_share = 0.25;
   // No peeling when the clicked pixel gives more than this blending weight to things nearer
   // than its surface (a click through a gap sees the surface clearly: at most ~0.05 there).
   double max_click_front_weight = 0.25;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <optional>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -320,12 +321,24 @@ int Session::see_through_view(int view, const Click& c) {
     if (k == key || (k.first == view && shows_surface(views_[size_t(index)], c, occ.surface,
                                                       options_.see_through_options.band)))
       return index;
+  ViewOptions vo = options_.see_through_views;
+  vo.use_photos = false;  // a photo cannot be peeled: the render can
+  vo.max_side = std::max(base.camera.width, base.camera.height);
+  vo.near_plane = float(occ.cut);
+  vo.threads = options_.threads;
+  std::optional<SegmentView> peeled;
   // Where SAM already takes the nearer things in with the clicked surface (the near leaves
-  // of the same plant), they are part of what the user means: no peeling.
+  // of the same plant), they are part of what the user means: no peeling. Unless, rendered
+  // without them, SAM at the click segments far less than that mask: then the mask was an
+  // enclosure (a cage's mesh, a playpen's bars) around the smaller thing clicked.
   const models::SegmentResult direct = sam_->decode(base.embedding, {c});
   size_t inside = 0;
   for (uint32_t p : occ.pixels) inside += p < direct.mask().data.size() && direct.mask().data[p];
-  if (double(inside) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) return view;
+  if (double(inside) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) {
+    peeled = build_view(scene_, base.camera, -1, *sam_, vo);
+    const size_t behind = mask_area(sam_->decode(peeled->embedding, {c}).mask());
+    if (double(behind) >= options_.see_through_options.min_peeled_share * double(mask_area(direct.mask()))) return view;
+  }
   // Nor where the selection so far covers them: a later click among the leaves of a plant
   // already selected is a click on the plant, not on something behind it.
   if (std::find(state_.selection.begin(), state_.selection.end(), true) != state_.selection.end()) {
@@ -334,14 +347,9 @@ int Session::see_through_view(int view, const Click& c) {
     for (uint32_t p : occ.pixels) selected += p < covered.data.size() && covered.data[p] > 0.5f;
     if (double(selected) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) return view;
   }
-  ViewOptions vo = options_.see_through_views;
-  vo.use_photos = false;  // a photo cannot be peeled: the render can
-  vo.max_side = std::max(base.camera.width, base.camera.height);
-  vo.near_plane = float(occ.cut);
-  vo.threads = options_.threads;
-  SegmentView peeled = build_view(scene_, base.camera, -1, *sam_, vo);
-  peeled.name = base.name + "_through";
-  const int index = add_view(std::move(peeled));
+  if (!peeled) peeled = build_view(scene_, base.camera, -1, *sam_, vo);
+  peeled->name = base.name + "_through";
+  const int index = add_view(std::move(*peeled));
   peeled_.push_back({key, index});
   return index;
 }
@@ -1118,7 +1126,14 @@ RoundReport Session::run_round(State& next, const State& prev) {
     decide();
     const bool selects_nothing = o.empty_selection_retry && live.members().empty();
     const models::SegmentResult& r = *results[first_view];
-    if ((larger >= 2 && double(larger) > o.larger_views_share * double(rep.accepted - 1)) || selects_nothing) {
+    // A first view peeled of what was nearer at the click: the larger whole that views
+    // seeing through those occluders mask is them with the object (a playpen with the toy
+    // inside), the very thing peeling set aside, not a granularity of the object.
+    const bool peeled_first = !o.consensus_on_peeled && std::any_of(peeled_.begin(), peeled_.end(), [&](const auto& p) {
+      return size_t(p.second) == first_view;
+    });
+    if ((!peeled_first && larger >= 2 && double(larger) > o.larger_views_share * double(rep.accepted - 1)) ||
+        selects_nothing) {
       const int used = fresh[first_view].candidate;
       const double first_gated = fresh[first_view].gated_share;
       const size_t used_area = mask_area(r.candidates[size_t(used)]);

@@ -180,17 +180,21 @@ struct SessionOptions {
   // the joint answer is not the surroundings, a click whose own mask looks like them counts in
   // neither (a later click on a rug's fringe, alone the floor, made the floor every view's mask).
   double min_union_growth = 1.5;
-  // A positive click on something seen through a nearer layer's gaps segments a render of
-  // its view without that layer (see_through.h), added as a view of its own.
   // Shares between tau_low and tau decided by the k nearest neighbours (coherence.h).
   bool coherence = true;
   CoherenceOptions coherence_options;
   // Shares between tau_low and tau also selected when the Gaussian's centre lies inside
   // most masks that see it (votes.h: the outline Gaussians of thin, coarse objects).
   CentreRule centre_rule{true};
+  // A positive click on something seen through a nearer layer's gaps segments a render of
+  // its view without that layer (see_through.h), added as a view of its own.
   bool see_through = true;
   SeeThroughOptions see_through_options;
   ViewOptions see_through_views;  // how those renders are made and encoded (cache, threads)
+  // Granularity consensus also where the first view is such a peeled view. Off: the larger
+  // whole the other views mask there is the occluders with the object (a playpen with the toy
+  // inside), what peeling set aside (README: enclosures seen through).
+  bool consensus_on_peeled = false;
 };
 
 // The paper's pipeline alone: every addition above switched off (hybrid propagation with
