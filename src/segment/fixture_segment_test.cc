@@ -28,14 +28,31 @@ double mean_alpha(const Image& alpha, int x0, int y0, int x1, int y1) {
   return sum / double((x1 - x0) * (y1 - y0));
 }
 
-TEST(FernFixture, OneClickOnThePlantLeavesOutWhatShowsBehindItsFronds) {
-  const fs::path scene = fs::path(ISEGMAN_FIXTURES_DIR) / "fern/scene";
-  if (!fs::exists(scene)) GTEST_SKIP() << "fixtures not found at " << scene << "; skipping real-data test";
-  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
-  const SceneBundle b = load_scene(scene.string());
-  const Camera* cam = find_camera(b.cameras, "image010");
-  ASSERT_NE(cam, nullptr);
-  const int c = int(cam - b.cameras.data());
+// The fern scene (loaded once for all its tests) and SAM; each test is skipped with a message
+// when either is absent.
+class FernFixture : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(scene_dir())) GTEST_SKIP() << "fixtures not found at " << scene_dir() << "; skipping real-data test";
+    if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  }
+  static fs::path scene_dir() { return fs::path(ISEGMAN_FIXTURES_DIR) / "fern/scene"; }
+  static const SceneBundle& fern() {
+    static const SceneBundle b = load_scene(scene_dir().string());
+    return b;
+  }
+  // The index of the camera named `name` (-1: none).
+  static int camera(const std::string& name) {
+    const Camera* cam = find_camera(fern().cameras, name);
+    return cam ? int(cam - fern().cameras.data()) : -1;
+  }
+};
+
+TEST_F(FernFixture, OneClickOnThePlantLeavesOutWhatShowsBehindItsFronds) {
+  const SceneBundle& b = fern();
+  const int c = camera("image010");
+  ASSERT_GE(c, 0);
+  const Camera* cam = &b.cameras[size_t(c)];
   // Boxes of image010 (504x378): a grey panel under the fronds, the window post right of the
   // trunk, the lit ledge at the left (all behind the plant) and the fronds with their gaps.
   struct Figures {
@@ -73,20 +90,16 @@ TEST(FernFixture, OneClickOnThePlantLeavesOutWhatShowsBehindItsFronds) {
 // are all in SAM's mask at the click. Rendered without them, SAM there masks 45 % of that
 // mask (the rest of the plant), far above the quarter under which the nearer things are an
 // enclosure around something smaller (a cone in a cage): the click is not seen through.
-TEST(FernFixture, AClickAmongThePlantsFrondsDoesNotSeeThroughThem) {
-  const fs::path scene = fs::path(ISEGMAN_FIXTURES_DIR) / "fern/scene";
-  if (!fs::exists(scene)) GTEST_SKIP() << "fixtures not found at " << scene << "; skipping real-data test";
-  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
-  const SceneBundle b = load_scene(scene.string());
-  const Camera* cam = find_camera(b.cameras, "image010");
-  ASSERT_NE(cam, nullptr);
+TEST_F(FernFixture, AClickAmongThePlantsFrondsDoesNotSeeThroughThem) {
+  const int c = camera("image010");
+  ASSERT_GE(c, 0);
   struct Figures {
     size_t selected = 0;
     int peeled = 0;
   };
   auto click = [&](const SessionOptions& so) {
-    auto session = segment_from_prompts(b, int(cam - b.cameras.data()), {pixel_centre_click(300, 170, 1)}, sam_or_null(),
-                                        so, view_options(), "auto");
+    auto session =
+        segment_from_prompts(fern(), c, {pixel_centre_click(300, 170, 1)}, sam_or_null(), so, view_options(), "auto");
     Figures f;
     for (const SegmentView& v : session->views()) f.peeled += v.name.find("_through") != std::string::npos;
     for (bool s : session->selection()) f.selected += s;
@@ -114,15 +127,12 @@ TEST(FernFixture, AClickAmongThePlantsFrondsDoesNotSeeThroughThem) {
 // interpolated across its mask runs through it: at (465, 219) and (465, 158) the background
 // gate set aside the pillar's Gaussians behind that surface (IoU 0.680 each) until it stood
 // aside where most of what it would move lies far behind the surface.
-TEST(FernFixture, ClicksOnTheFarPillarsCoarseSurfaceDoNotPeelItAway) {
-  const fs::path scene = fs::path(ISEGMAN_FIXTURES_DIR) / "fern/scene";
-  if (!fs::exists(scene)) GTEST_SKIP() << "fixtures not found at " << scene << "; skipping real-data test";
-  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+TEST_F(FernFixture, ClicksOnTheFarPillarsCoarseSurfaceDoNotPeelItAway) {
   const EvalTask task = read_task(std::string(ISEGMAN_SOURCE_DIR) + "/eval/fixture_tasks/fern_pillar", ISEGMAN_FIXTURES_DIR);
-  const SceneBundle b = load_scene(task.scene_dir);
-  const Camera* cam = find_camera(b.cameras, task.view);
-  ASSERT_NE(cam, nullptr);
-  const int c = int(cam - b.cameras.data());
+  ASSERT_EQ(fs::canonical(task.scene_dir), fs::canonical(scene_dir()));
+  const SceneBundle& b = fern();
+  const int c = camera(task.view);
+  ASSERT_GE(c, 0);
   auto score = [&](double x, double y) {
     auto session = segment_from_prompts(b, c, {pixel_centre_click(x, y, 1)}, sam_or_null(), SessionOptions(),
                                         view_options(), "auto");
