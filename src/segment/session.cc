@@ -326,26 +326,27 @@ int Session::see_through_view(int view, const Click& c) {
   vo.max_side = std::max(base.camera.width, base.camera.height);
   vo.near_plane = float(occ.cut);
   vo.threads = options_.threads;
-  std::optional<SegmentView> peeled;
-  // Where SAM already takes the nearer things in with the clicked surface (the near leaves
-  // of the same plant), they are part of what the user means: no peeling. Unless, rendered
-  // without them, SAM at the click segments far less than that mask: then the mask was an
-  // enclosure (a cage's mesh, a playpen's bars) around the smaller thing clicked.
-  const models::SegmentResult direct = sam_->decode(base.embedding, {c});
-  size_t inside = 0;
-  for (uint32_t p : occ.pixels) inside += p < direct.mask().data.size() && direct.mask().data[p];
-  if (double(inside) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) {
-    peeled = build_view(scene_, base.camera, -1, *sam_, vo);
-    const size_t behind = mask_area(sam_->decode(peeled->embedding, {c}).mask());
-    if (double(behind) >= options_.see_through_options.min_peeled_share * double(mask_area(direct.mask()))) return view;
-  }
-  // Nor where the selection so far covers them: a later click among the leaves of a plant
-  // already selected is a click on the plant, not on something behind it.
+  // No peeling where the selection so far covers the nearer things: a later click among the
+  // leaves of a plant already selected is a click on the plant, not on something behind it.
   if (std::find(state_.selection.begin(), state_.selection.end(), true) != state_.selection.end()) {
     const Image covered = selection_coverage(view);
     size_t selected = 0;
     for (uint32_t p : occ.pixels) selected += p < covered.data.size() && covered.data[p] > 0.5f;
     if (double(selected) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) return view;
+  }
+  // Nor where SAM already takes them in with the clicked surface (the near leaves of the same
+  // plant): they are part of what the user means. Unless, rendered without them, SAM at the
+  // click segments far less than that mask: then the mask was an enclosure (a cage's mesh, a
+  // playpen's bars) around the smaller thing clicked. That test costs a render and an encoding.
+  std::optional<SegmentView> peeled;
+  const models::SegmentResult direct = sam_->decode(base.embedding, {c});
+  size_t inside = 0;
+  for (uint32_t p : occ.pixels) inside += p < direct.mask().data.size() && direct.mask().data[p];
+  if (double(inside) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) {
+    if (options_.see_through_options.min_peeled_share <= 0) return view;
+    peeled = build_view(scene_, base.camera, -1, *sam_, vo);
+    const size_t behind = mask_area(sam_->decode(peeled->embedding, {c}).mask());
+    if (double(behind) >= options_.see_through_options.min_peeled_share * double(mask_area(direct.mask()))) return view;
   }
   if (!peeled) peeled = build_view(scene_, base.camera, -1, *sam_, vo);
   peeled->name = base.name + "_through";
