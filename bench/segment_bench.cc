@@ -226,8 +226,9 @@ void BM_RealClick(benchmark::State& state) { real_click(state, "fern plant", 250
 BENCHMARK(BM_RealClick)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 // A click on an inner frond, whose nearer fronds SAM's mask at the click holds: with the
-// enclosure test (1) the click renders and encodes the view without them to find that they are
-// the plant's own (see_through.h, min_peeled_share); without it (0) it does not.
+// enclosure test (1) the click checks whether they stand apart in depth (they run on to the
+// clicked frond, so no render or encoding without them follows; see_through.h); without it (0)
+// it does not. What the test costs a click that is not inside an enclosure.
 void BM_FrondClick(benchmark::State& state) {
   segment::SessionOptions so;
   if (state.range(0) == 0) so.see_through_options.min_peeled_share = 0;

@@ -800,6 +800,25 @@ TEST(HardCases, AClickOnTheToyInItsPlaypenSeesThroughTheBars) {
   EXPECT_LT(before.iou, 0.2);
 }
 
+TEST(HardCases, AClickAmongTheHangingPlantsLeavesIsNotTakenForAnEnclosure) {
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // The second drawn click among the hanging plant's leaves: SAM's mask there holds the nearer
+  // leaves, and rendered without them SAM masks 11 % of it (a cluster of the leaves behind), as
+  // little as inside an enclosure: by that test alone the click was seen through (9.0). But the
+  // nearer leaves run on in depth to the clicked one, where a playpen's bars stand apart from
+  // the toy: the click is not seen through.
+  SessionOptions by_sam_alone;
+  by_sam_alone.see_through_options.min_enclosure_gap = 0;
+  const Outcome ours = run("study/hanging_plant", SessionOptions(), {}, kAblation, 2);
+  const Outcome sam_alone = run("study/hanging_plant", by_sam_alone, {}, kAblation, 2);
+  std::printf("[ hard ] study/hanging_plant, second drawn click: %.1f%% (%d peeled); by SAM alone %.1f%% (%d peeled)\n",
+              100 * ours.iou, peeled_views(*ours.session), 100 * sam_alone.iou, peeled_views(*sam_alone.session));
+  EXPECT_EQ(peeled_views(*ours.session), 0);
+  EXPECT_EQ(peeled_views(*sam_alone.session), 1);
+  EXPECT_GT(ours.iou, 0.8);
+  EXPECT_LT(sam_alone.iou, 0.5);
+}
+
 TEST(HardCases, TheBroomsBristlesThatAMinorityOfViewsMaskJoinItsHandle) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // Clicked on its handle, 7 of 20 views mask the whole broom and 13 the handle alone, nine

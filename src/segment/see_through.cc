@@ -126,6 +126,7 @@ Occluders find_occluders(const GaussianScene& scene, const PreparedFrame& frame,
   // Just behind the occluders (whose Gaussians have some thickness), well before the
   // clicked surface, so the object's own nearer parts stay.
   out.cut = nearest_behind + 0.3 * (surface_front - nearest_behind);
+  out.clearance = (surface_front - nearest_behind) / surface_front;
   out.found = true;
   return out;
 }

@@ -335,18 +335,20 @@ int Session::see_through_view(int view, const Click& c) {
     if (double(selected) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) return view;
   }
   // Nor where SAM already takes them in with the clicked surface (the near leaves of the same
-  // plant): they are part of what the user means. Unless, rendered without them, SAM at the
-  // click segments far less than that mask: then the mask was an enclosure (a cage's mesh, a
-  // playpen's bars) around the smaller thing clicked. That test costs a render and an encoding.
+  // plant): they are part of what the user means. Unless they stand apart in depth and,
+  // rendered without them, SAM at the click segments far less than that mask: then the mask
+  // was an enclosure (a cage's mesh, a playpen's bars) around the smaller thing clicked. The
+  // second test costs a render and an encoding.
   std::optional<SegmentView> peeled;
   const models::SegmentResult direct = sam_->decode(base.embedding, {c});
   size_t inside = 0;
   for (uint32_t p : occ.pixels) inside += p < direct.mask().data.size() && direct.mask().data[p];
   if (double(inside) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) {
-    if (options_.see_through_options.min_peeled_share <= 0) return view;
+    const SeeThroughOptions& so = options_.see_through_options;
+    if (so.min_peeled_share <= 0 || occ.clearance < so.gap + so.min_enclosure_gap) return view;
     peeled = build_view(scene_, base.camera, -1, *sam_, vo);
     const size_t behind = mask_area(sam_->decode(peeled->embedding, {c}).mask());
-    if (double(behind) >= options_.see_through_options.min_peeled_share * double(mask_area(direct.mask()))) return view;
+    if (double(behind) >= so.min_peeled_share * double(mask_area(direct.mask()))) return view;
   }
   if (!peeled) peeled = build_view(scene_, base.camera, -1, *sam_, vo);
   peeled->name = base.name + "_through";
