@@ -778,9 +778,10 @@ TEST(HardCases, AClickOnTheToyInItsPlaypenSeesThroughTheBars) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // The click lands on the rabbit between the playpen's bars. SAM's mask there is the pen
   // with the rabbit (15.5k pixels): it holds every bar around the click, which is how a
-  // plant's near leaves look, so nothing was peeled (6.9). Rendered without the bars, SAM at
+  // plant's near leaves look, so nothing was peeled (6.9). But the bars stand apart in depth
+  // from the rabbit (near leaves run on to the clicked one), and rendered without them SAM at
   // the click masks the rabbit alone, 12 % of that mask (the real fern's plant with its near
-  // fronds peeled: 45 %), so the bars are an enclosure and the click sees through them. The
+  // fronds peeled: 45 %): the bars are an enclosure and the click sees through them. The
   // other views, which see the pen, mask it with the rabbit; granularity consensus no longer
   // takes that larger whole for the peeled view's object (with it, the pen again: 6.9).
   SessionOptions consensus, neither;
