@@ -187,24 +187,25 @@ void real_click(benchmark::State& state, const std::string& name, double x, doub
   }
   static SceneBundle bundle;
   static std::map<std::string, std::unique_ptr<segment::Session>> sessions;
+  if (bundle.gaussians.size() == 0) bundle = load_scene(scene.string());
+  const Camera* cam = find_camera(bundle.cameras, "image010");
+  if (!cam) {
+    state.SkipWithError("the fern fixture has no camera image010");
+    return;
+  }
+  const int camera = int(cam - bundle.cameras.data());
   std::unique_ptr<segment::Session>& session = sessions[name];
   const Click click = pixel_centre_click(x, y, 1);
   if (!session) {
     auto sam = sam_or_skip(state);
     if (!sam) return;
-    if (bundle.gaussians.size() == 0) bundle = load_scene(scene.string());
     segment::ViewOptions vo;
     vo.cache_dir = (fs::temp_directory_path() / "isegman-bench-embeddings").string();
     fs::create_directories(vo.cache_dir);
-    const Camera* cam = find_camera(bundle.cameras, "image010");
-    if (!cam) {
-      state.SkipWithError("the fern fixture has no camera image010");
-      return;
-    }
-    session = segment::segment_from_prompts(bundle, int(cam - bundle.cameras.data()), {click}, sam, so, vo, "auto");
+    session = segment::segment_from_prompts(bundle, camera, {click}, sam, so, vo, "auto");
     session->undo();
   }
-  const int view = segment::view_of_camera(*session, int(find_camera(bundle.cameras, "image010") - bundle.cameras.data()));
+  const int view = segment::view_of_camera(*session, camera);
   segment::RoundReport last;
   for (auto _ : state) {
     last = session->click(view, click);

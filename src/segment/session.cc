@@ -309,8 +309,15 @@ bool shows_surface(const SegmentView& v, const Click& c, double surface, double 
 int Session::see_through_view(int view, const Click& c) {
   if (!options_.see_through || c.label != 1) return view;
   const SegmentView& base = views_[size_t(view)];
-  const Occluders occ = find_occluders(scene_, base.frame, c.x, c.y, options_.see_through_options, options_.threads);
+  const SeeThroughOptions& so = options_.see_through_options;
+  const Occluders occ = find_occluders(scene_, base.frame, c.x, c.y, so, options_.threads);
   if (!occ.found) return view;
+  // Whether most of the occluders' pixels (max_in_mask) are ones `covered` holds.
+  auto holds_most = [&](auto covered) {
+    size_t n = 0;
+    for (uint32_t p : occ.pixels) n += covered(p);
+    return double(n) >= so.max_in_mask * double(occ.pixels.size());
+  };
   // A view already peeled from this one that shows the clicked surface at the click is this
   // click's view too (a second click on the ball behind the fence finds a cut a little
   // deeper): a second, nearly identical view would vote the same evidence twice. It is so
@@ -318,8 +325,7 @@ int Session::see_through_view(int view, const Click& c) {
   // behind a cage's mesh, where SAM masks the cage): an earlier click already saw through.
   const std::pair<int, float> key{view, float(occ.cut)};
   for (const auto& [k, index] : peeled_)
-    if (k == key || (k.first == view && shows_surface(views_[size_t(index)], c, occ.surface,
-                                                      options_.see_through_options.band)))
+    if (k == key || (k.first == view && shows_surface(views_[size_t(index)], c, occ.surface, so.band)))
       return index;
   ViewOptions vo = options_.see_through_views;
   vo.use_photos = false;  // a photo cannot be peeled: the render can
@@ -330,9 +336,7 @@ int Session::see_through_view(int view, const Click& c) {
   // leaves of a plant already selected is a click on the plant, not on something behind it.
   if (std::find(state_.selection.begin(), state_.selection.end(), true) != state_.selection.end()) {
     const Image covered = selection_coverage(view);
-    size_t selected = 0;
-    for (uint32_t p : occ.pixels) selected += p < covered.data.size() && covered.data[p] > 0.5f;
-    if (double(selected) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) return view;
+    if (holds_most([&](uint32_t p) { return p < covered.data.size() && covered.data[p] > 0.5f; })) return view;
   }
   // Nor where SAM already takes them in with the clicked surface (the near leaves of the same
   // plant): they are part of what the user means. Unless they stand apart in depth and,
@@ -341,14 +345,12 @@ int Session::see_through_view(int view, const Click& c) {
   // second test costs a render and an encoding.
   std::optional<SegmentView> peeled;
   const models::SegmentResult direct = sam_->decode(base.embedding, {c});
-  size_t inside = 0;
-  for (uint32_t p : occ.pixels) inside += p < direct.mask().data.size() && direct.mask().data[p];
-  if (double(inside) >= options_.see_through_options.max_in_mask * double(occ.pixels.size())) {
-    const SeeThroughOptions& so = options_.see_through_options;
+  const Mask& at_click = direct.mask();
+  if (holds_most([&](uint32_t p) { return p < at_click.data.size() && at_click.data[p]; })) {
     if (so.min_peeled_share <= 0 || occ.clearance < so.gap + so.min_enclosure_gap) return view;
     peeled = build_view(scene_, base.camera, -1, *sam_, vo);
     const size_t behind = mask_area(sam_->decode(peeled->embedding, {c}).mask());
-    if (double(behind) >= so.min_peeled_share * double(mask_area(direct.mask()))) return view;
+    if (double(behind) >= so.min_peeled_share * double(mask_area(at_click))) return view;
   }
   if (!peeled) peeled = build_view(scene_, base.camera, -1, *sam_, vo);
   peeled->name = base.name + "_through";
