@@ -81,6 +81,12 @@ int run_eval_ablation(const Args& args) {
   const int corrective = args.get_int("corrective-clicks", 0);
   if (corrective < 0 || corrective > 20) throw Error("--corrective-clicks must be between 0 and 20");
   if (corrective > 0 && clicks_per_task > 1) throw Error("--corrective-clicks and --clicks-per-task exclude each other");
+  // --granularity-choice: after each task's own click, the user steps the clicked view's
+  // granularity (Session::change_granularity) up to twice larger and twice smaller and keeps
+  // the best; a row of those figures (the part or whole a click cannot tell apart).
+  const bool granularity_choice = args.has("granularity-choice");
+  if (granularity_choice && (corrective > 0 || clicks_per_task > 1))
+    throw Error("--granularity-choice scores one click per task: not with --corrective-clicks or --clicks-per-task");
   SegmentSetup setup = parse_segment_setup(args);
   auto sam = load_sam(setup);
   std::vector<EvalConfig> configs = {
@@ -301,6 +307,17 @@ int run_eval_ablation(const Args& args) {
       tc.worst = std::min(tc.worst, iou);
       ++tc.n;
     };
+    // The best IoU over the click's granularities, the session left as the click made it.
+    std::vector<double> per_granularity;
+    auto best_granularity = [&](segment::Session& session, const std::function<double()>& iou) {
+      double best = iou();
+      for (int step : {1, -1}) {
+        int taken = 0;
+        for (; taken < 2 && !session.change_granularity(step).no_granularity; ++taken) best = std::max(best, iou());
+        for (; taken > 0; --taken) session.undo();
+      }
+      per_granularity.push_back(best);
+    };
     auto close_task = [&](const TaskClicks& tc) {
       const double n = double(tc.n), iou = tc.iou / n;
       per.push_back(iou);
@@ -339,6 +356,7 @@ int run_eval_ablation(const Args& args) {
             for (int later = c + 1; later <= corrective; ++later) per_after[size_t(later)].back() = sc.iou;
           }
         }
+        if (granularity_choice) best_granularity(*session, [&] { return score().iou; });
         add_click(tc, sc.iou, sc.accuracy, tm.ms_interaction());
         if (!overlays.empty() && ci == 0) {  // the first configuration's evidence, per task (and click) and view
           std::string name = s->name + "_" + s->scene.objects[size_t(t->object)].name;
@@ -360,6 +378,8 @@ int run_eval_ablation(const Args& args) {
         auto session = segment::segment_from_prompts(b, int(cam - b.cameras.data()), prompts[k], sam, so, setup.views,
                                                      setup.views_spec, &tm);
         const segment::TaskResult r = segment::score_task(t, b, session->selection(), so.threads);
+        if (granularity_choice)
+          best_granularity(*session, [&] { return segment::score_task(t, b, session->selection(), so.threads).iou; });
         add_click(tc, r.iou, r.accuracy, tm.ms_interaction());
         if (!overlays.empty() && ci == 0) write_overlays(*session, k ? t.name + "_click" + std::to_string(k) : t.name);
       }
@@ -383,6 +403,17 @@ int run_eval_ablation(const Args& args) {
       };
       row("... the task's own click", per_own);
       row("... its worst click per task", per_worst);
+    }
+    if (granularity_choice) {
+      double mean = 0, least = 1;
+      for (double p : per_granularity) {
+        mean += p;
+        least = std::min(least, p);
+      }
+      std::printf("| ... and the best granularity | %.2f | %.1f | | |", 100 * mean / double(per_granularity.size()),
+                  100 * least);
+      for (double p : per_granularity) std::printf(" %.1f |", 100 * p);
+      std::printf("\n");
     }
     if (corrective > 0 && !tasks.empty()) {
       for (int c = 0; c <= corrective; ++c) {
@@ -408,7 +439,7 @@ int run_ablation(const std::vector<std::string>& argv) {
   values.insert({"density", "width", "height", "set", "only", "configs", "overlays", "preview", "fixtures",
                  "fixture-tasks", "clicks-per-task", "corrective-clicks", "camera-factor"});
   std::set<std::string> switches = segment_switch_flags();
-  switches.insert("second-clicks");
+  switches.insert({"second-clicks", "granularity-choice"});
   Args args(argv, values, switches);
   const std::string set = args.get("set", "eval");
   if (set == "eval") return run_eval_ablation(args);
@@ -476,7 +507,7 @@ RegisterCommand reg("ablation", "measure the segmentation's design choices on sy
                     "usage: isegman ablation [--set eval|demo] [--only TEXT] [--configs 0,2,...] [--overlays DIR]\n"
                     "                        [--density D] [--width W --height H] [--fixtures DIR]\n"
                     "                        [--fixture-tasks DIR|none] [--clicks-per-task K [--second-clicks]]\n"
-                    "                        [--corrective-clicks N] [--camera-factor F]\n"
+                    "                        [--corrective-clicks N] [--camera-factor F] [--granularity-choice]\n"
                     "                        [segment options]\n"
                     "  --set eval (default): the evaluation set of hard cases (gaps, occluders, thin, tiny and\n"
                     "  compound objects, coarse Gaussians, clean orbit objects), every addition beyond the paper\n"
@@ -494,6 +525,8 @@ RegisterCommand reg("ablation", "measure the segmentation's design choices on sy
                     "  after each synthetic task's own click, up to N clicks as a user corrects, at the most\n"
                     "  interior pixel of the larger error in the clicked view (positive where the selection\n"
                     "  misses the object, negative where it takes something else); rows per click count.\n"
+                    "  --granularity-choice: after each task's click, the clicked view's granularity stepped up\n"
+                    "  to twice larger and twice smaller (the web app's Larger/Smaller); a row of the best.\n"
                     "  --camera-factor F (eval set): F x the cameras of each synthetic capture, F - 1 more\n"
                     "  between each camera and the next along its path. Synthetic tasks vote with every camera\n"
                     "  unless --views is given (--views auto: the K views segment chooses, as for a capture of\n"

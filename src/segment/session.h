@@ -207,6 +207,10 @@ void disable_part_growth(SessionOptions& o);
 struct UserClick {
   int view = 0;
   Click click;
+  // The candidate of SAM's answer in this view that the user chose for the click
+  // (Session::change_granularity), or -1: the session chooses. It holds while this is the
+  // view's latest click: a later click there gets a new answer from SAM.
+  int candidate = -1;
 };
 
 enum class ViewStatus { Accepted, NoClicks, EmptyMask, NoOverlap, Skipped, NegativeInside };
@@ -270,6 +274,7 @@ struct RoundReport {
   size_t attached_parts = 0;        // Gaussians added as parts a minority of the views masks (attached_parts.h)
   size_t negative_islands = 0;      // Gaussians negative clicks took out as islands apart from the positive ones
   bool duplicate = false;  // the click repeated an earlier one: nothing changed
+  bool no_granularity = false;  // change_granularity found no larger (smaller) candidate: nothing changed
 };
 
 class Session {
@@ -288,7 +293,13 @@ class Session {
   // A click in view `view` at continuous pixel coordinates of that view's working
   // resolution; label 1 positive, 0 negative. Runs a full round.
   RoundReport click(int view, const Click& click);
-  // Removes the last click; false when there is none.
+  // The last click's view votes with the next larger (step > 0) or smaller (step < 0) of
+  // SAM's candidates there that hold the view's positive clicks, instead of the one the round
+  // chose: one click cannot tell a part from the whole it belongs to (a click on a pot gave
+  // the pot; the potted plant is the next larger). A round like a click's, which undo()
+  // takes back; nothing changes (report.no_granularity) when there is no such candidate.
+  RoundReport change_granularity(int step);
+  // Removes the last click (or granularity change); false when there is none.
   bool undo();
 
   const std::vector<bool>& selection() const { return state_.selection; }

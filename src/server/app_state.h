@@ -121,6 +121,8 @@ class AppState {
   // The click segments what the page shows: the display state's hidden Gaussians are
   // neither in its view nor selectable.
   uint64_t click(ClickRecord click);
+  // The last click's mask one step larger (+1) or smaller (-1): a job, as a click is.
+  uint64_t granularity(int step) { return segmentation_.granularity(step); }
   // The old click endpoints: walk the history when its step is a click (the job id).
   uint64_t undo_click() { return undo(StepFilter::kClick).job; }
   uint64_t redo_click() { return redo(StepFilter::kClick).job; }

@@ -238,7 +238,12 @@ void Segmentation::rebuild(const Progress& progress, const segment::Session* don
   std::vector<ClickRecord> replay = std::move(log_);
   log_.clear();
   for (const ClickRecord& c : replay) {
-    click(c, nullptr);
+    try {
+      click(c, nullptr);
+    } catch (const AppError&) {
+      // A larger or smaller mask the new settings' round does not offer: the click stays as it is.
+      if (c.granularity == 0) throw;
+    }
     ++done;
     if (progress) progress(done, total, "replayed click " + std::to_string(log_.size()));
   }
@@ -454,8 +459,28 @@ int Segmentation::shown_view_for(const ClickRecord& c, const Progress& progress)
   return k;
 }
 
+segment::RoundReport Segmentation::step_granularity(int step, const Progress& progress) {
+  if (!session_) throw AppError(ErrorKind::kConflict, "segmentation is not ready");
+  if (step == 0) throw AppError(ErrorKind::kInvalid, "granularity: the step must be +1 (larger) or -1 (smaller)");
+  if (log_.empty() || session_->clicks().empty()) throw AppError(ErrorKind::kConflict, "no click to make larger or smaller");
+  if (session_->clicks().back().click.label != 1)
+    throw AppError(ErrorKind::kConflict, "the last click is negative: only a positive click's mask grows or shrinks");
+  if (progress) progress(0, 1, std::string("segmenting: the clicked view's ") + (step > 0 ? "larger" : "smaller") + " mask");
+  ClickRecord c = log_.back();  // the click it changes: its camera and hidden Gaussians
+  c.granularity = step > 0 ? 1 : -1;
+  const std::vector<bool>* hidden = hidden_of(c);
+  session_->set_excluded(hidden ? *hidden : std::vector<bool>{});
+  segment::RoundReport r = session_->change_granularity(c.granularity);
+  if (r.no_granularity)
+    throw AppError(ErrorKind::kConflict, std::string("SAM has no ") + (step > 0 ? "larger" : "smaller") +
+                                             " mask holding the last click in its view");
+  log_.push_back(std::move(c));
+  return r;
+}
+
 segment::RoundReport Segmentation::click(const ClickRecord& c, const Progress& progress) {
   if (!session_) throw AppError(ErrorKind::kConflict, "segmentation is not ready");
+  if (c.granularity != 0) return step_granularity(c.granularity, progress);  // redone or replayed
   const Camera& full = c.free_camera ? *c.free_camera : snapshot_->cameras.at(size_t(c.camera_index));
   if (!(c.click.x >= 0 && c.click.x < full.width && c.click.y >= 0 && c.click.y < full.height))
     throw AppError(ErrorKind::kInvalid, "click: x and y must lie in the camera's image");

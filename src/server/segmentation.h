@@ -33,11 +33,14 @@ struct SegmentSettings {
 // pixel coordinates of that camera's full-size image (core/click.h), as the page sends it.
 // `hidden`: the Gaussians hidden from display when it was made (one flag per Gaussian, or
 // empty): the click segments what the user saw, and none of them can be selected.
+// `granularity` (+1 / -1): not a new click but the last click's mask one step larger or
+// smaller (Session::change_granularity); the other fields repeat that click's.
 struct ClickRecord {
   int camera_index = -1;
   std::optional<Camera> free_camera;
   Click click;
   std::vector<bool> hidden;
+  int granularity = 0;
 };
 
 // What the evidence strip shows of one segmentation view.
@@ -111,6 +114,10 @@ class Segmentation {
 
   // One round for a click; adds the free camera's view first when needed. Clears redo.
   segment::RoundReport click(const ClickRecord& click, const Progress& progress);
+  // The last click's mask one step larger (step > 0) or smaller among SAM's candidates: a
+  // round like a click's, logged, undone and redone as one. Throws AppError(kConflict) when
+  // there is no click, the last one is negative, or SAM has no such candidate there.
+  segment::RoundReport step_granularity(int step, const Progress& progress);
   bool can_undo() const { return !log_.empty(); }
   bool can_redo() const { return !redo_.empty(); }
   void undo();                              // throws AppError(kConflict) when nothing to undo

@@ -266,6 +266,22 @@ uint64_t SegmentationJobs::click(const ClickRecord& c) {
   });
 }
 
+uint64_t SegmentationJobs::granularity(int step) {
+  if (step != 1 && step != -1) invalid("step: must be 1 (larger) or -1 (smaller)");
+  const std::string what = step > 0 ? "larger mask at the last click" : "smaller mask at the last click";
+  return submit(step > 0 ? "larger mask" : "smaller mask", [this, step, what](const Progress& progress) {
+    ensure_current(progress);
+    const auto t0 = std::chrono::steady_clock::now();
+    segment::RoundReport r = seg_->step_granularity(step, progress);
+    if (!publish(true, what)) conflict("the scene was edited while this mask was being segmented: try again");
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    char line[256];
+    std::snprintf(line, sizeof line, "%s: %zu Gaussians selected; %d views accepted, %d dropped (%.1f s)", what.c_str(),
+                  r.selected, r.accepted, r.dropped, ms / 1000);
+    log_.note(line);
+  });
+}
+
 uint64_t SegmentationJobs::follow(bool undo, uint64_t fingerprint) {
   try {
     return jobs_.submit(undo ? "undo click" : "redo click", [this, undo, fingerprint](const JobRunner::Report& report) {

@@ -81,6 +81,9 @@ class SegmentationJobs {
   void stop_building_ahead();  // joins the thread; idempotent
 
   uint64_t click(const ClickRecord& click);
+  // The last click's mask one step larger (+1) or smaller (-1) among SAM's candidates
+  // (Segmentation::step_granularity), as a job a click's history step records.
+  uint64_t granularity(int step);
   // The one history (EditState's timeline) walked back or forward over a click made on
   // the scene with `fingerprint`; the history already restored the selection exactly. A
   // job brings the segmentation's click log and evidence in line. Returns its id (0 when

