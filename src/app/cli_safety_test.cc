@@ -122,6 +122,25 @@ TEST(CliSafety, RendersNeverReplaceThePhotos) {
   EXPECT_EQ(slurp(images + "/a.png"), before);
 }
 
+TEST(CliSafety, SegmentsLargerAndSmallerStepsAreCheckedBeforeAnyWork) {
+  // --larger / --smaller change the last click's mask: refused with a message, before SAM
+  // is loaded, where they cannot apply; no selection is written.
+  const std::string root = make_scene("granularity", {"a"});
+  const std::string base = "segment " + q(root + "/scene") + " --view a --click 3,3 --out " + q(root + "/sel.isel");
+  const std::pair<const char*, const char*> cases[] = {
+      {" --larger 1 --smaller 1", "not both"},
+      {" --larger 9", "from 0 to 5"},
+      {" --smaller -1", "from 0 to 5"},
+      {" --larger 1 --neg 5,5", "without --neg"},
+  };
+  for (const auto& [flags, message] : cases) {
+    const CliRun r = isegman(base + flags);
+    EXPECT_EQ(r.status, 1) << flags << "\n" << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << flags << "\n" << r.output;
+  }
+  EXPECT_FALSE(fs::exists(root + "/sel.isel"));
+}
+
 TEST(CliSafety, SelectionFilesSavedWithTheLegacyFingerprintStillWork) {
   // Selection files saved before the scene fingerprint changed carry the FNV-1a one: they
   // still select, alone or with a shape, and the scene is edited as they say.
