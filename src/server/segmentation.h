@@ -118,6 +118,8 @@ class Segmentation {
   // round like a click's, logged, undone and redone as one. Throws AppError(kConflict) when
   // there is no click, the last one is negative, or SAM has no such candidate there.
   segment::RoundReport step_granularity(int step, const Progress& progress);
+  // Whether SAM has a larger (step > 0) / smaller mask at the last click.
+  bool can_step_granularity(int step) const { return session_ && session_->can_change_granularity(step); }
   bool can_undo() const { return !log_.empty(); }
   bool can_redo() const { return !redo_.empty(); }
   void undo();                              // throws AppError(kConflict) when nothing to undo

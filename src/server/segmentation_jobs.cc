@@ -207,6 +207,8 @@ bool SegmentationJobs::publish(bool apply_selection, const std::string& what, St
   published_.selected = seg_->selected_count();
   published_.can_undo = seg_->can_undo();
   published_.can_redo = seg_->can_redo();
+  published_.can_grow = seg_->can_step_granularity(1);
+  published_.can_shrink = seg_->can_step_granularity(-1);
   published_.settings = seg_->settings();
   kept_ = seg_->kept();
   ++published_.thumb_version;

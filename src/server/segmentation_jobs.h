@@ -56,6 +56,7 @@ struct SegmentationStatus {
   bool stale = false;   // the scene was edited since: the next click segments the edited scene
   size_t clicks = 0, selected = 0;
   bool can_undo = false, can_redo = false;
+  bool can_grow = false, can_shrink = false;  // SAM has a larger / smaller mask at the last click
   std::vector<ViewEvidence> views;
   uint64_t thumb_version = 0;
   SegmentSettings settings;

@@ -651,7 +651,8 @@ TEST(ServerApi, LargerAndSmallerStepTheLastClicksMask) {
     EXPECT_TRUE(s.app->jobs().wait_idle(120));
     return s.get_json("/api/jobs/" + std::to_string(job));
   };
-  // Nothing clicked yet: the job says so and nothing changes.
+  // Nothing clicked yet: the buttons are off, the job says so and nothing changes.
+  EXPECT_FALSE(s.get_json("/api/status")["segmentation"]["can_grow"].get<bool>());
   json none = step(1);
   EXPECT_EQ(none["state"], "failed");
   EXPECT_NE(none["error"].get<std::string>().find("no click"), std::string::npos) << none.dump();
@@ -661,6 +662,7 @@ TEST(ServerApi, LargerAndSmallerStepTheLastClicksMask) {
   ASSERT_TRUE(s.app->jobs().wait_idle(120));
   const size_t clicked = s.get_json("/api/status")["edit"]["selected"].get<size_t>();
   ASSERT_GT(clicked, 0u);
+  EXPECT_TRUE(s.get_json("/api/status")["segmentation"]["can_grow"].get<bool>());
   // Step larger until SAM has no larger mask at the click (three answers: at most two steps).
   int taken = 0;
   json last;
@@ -672,6 +674,8 @@ TEST(ServerApi, LargerAndSmallerStepTheLastClicksMask) {
   EXPECT_NE(last["error"].get<std::string>().find("no larger mask"), std::string::npos) << last.dump();
   json st = s.get_json("/api/status");
   const size_t larger = st["edit"]["selected"].get<size_t>();
+  EXPECT_FALSE(st["segmentation"]["can_grow"].get<bool>());  // the last step found none
+  EXPECT_TRUE(st["segmentation"]["can_shrink"].get<bool>());
   std::printf("[ server ] the click selected %zu Gaussians; %d step(s) larger: %zu\n", clicked, taken, larger);
   // SAM has a larger answer at the click (the object with the ground around it), though the
   // other views, masking the object alone, keep the ground out of the selection.

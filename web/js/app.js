@@ -141,9 +141,10 @@ function render(s) {
   if (!s.busy && seg.clicks === 0) marks = [];
   // Clicks of a segmentation the scene has moved away from are not shown on the new scene.
   showMarks(seg.stale && !s.busy ? [] : marks);
-  const noClick = s.busy || seg.clicks === 0 || seg.stale;
-  $('btn-larger').disabled = noClick;
-  $('btn-smaller').disabled = noClick;
+  // Enabled while SAM has a larger / smaller mask at the last click.
+  const idle = !s.busy && !seg.stale;
+  $('btn-larger').disabled = !(idle && seg.can_grow);
+  $('btn-smaller').disabled = !(idle && seg.can_shrink);
 
   strip.update(seg, viewer.free ? -1 : viewer.cameraIndex);
   panels.update(s);
