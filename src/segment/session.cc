@@ -957,8 +957,12 @@ RoundReport Session::run_round(State& next, const State& prev) {
   // highest IoU with it (a view whose best-scored mask is a larger or smaller part than the
   // object), else SAM's choice for inspection to drop. Choosing by IoU alone would bend
   // every view to the selection so far, which after one view is often a part.
+  // A round of a granularity the user chose (change_granularity): the other views take their
+  // candidate closest to the selection that answer gives, not SAM's choice where it passes
+  // (the user has said which of a part and its whole is meant).
+  const bool user_round = user_candidate[size_t(next.clicks.back().view)] >= 0;
   auto fallback_candidate = [&](const models::SegmentResult& r, const Image& coverage) {
-    if (passes(agreement(r.candidates[size_t(r.mask_index)], coverage))) return r.mask_index;
+    if (!user_round && passes(agreement(r.candidates[size_t(r.mask_index)], coverage))) return r.mask_index;
     int best = r.mask_index;
     double best_iou = -1;
     for (size_t c = 0; c < r.candidates.size(); ++c) {
@@ -1016,7 +1020,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       Image selection_beyond;  // the selection around a passing part of it, left open
       ViewVotes raw;
       bool have_raw = false;
-      const bool several = r.candidates.size() > 1 && o.choose_candidate && user_candidate[k] < 0;
+      const bool several = r.candidates.size() > 1 && (o.choose_candidate || user_round) && user_candidate[k] < 0;
       bool conflict = false;  // a negative click in every candidate that holds the positive ones
       if (inspect || (!first && several)) {
         const std::vector<float>& values = live.values();
