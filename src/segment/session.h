@@ -296,8 +296,9 @@ class Session {
   // The last click's view votes with the next larger (step > 0) or smaller (step < 0) of
   // SAM's candidates there that hold the view's positive clicks, instead of the one the round
   // chose: one click cannot tell a part from the whole it belongs to (a click on a pot gave
-  // the pot; the potted plant is the next larger). A round like a click's, which undo()
-  // takes back; nothing changes (report.no_granularity) when there is no such candidate.
+  // the pot; the potted plant is the next larger). The other views then take their own
+  // candidate closest to the selection it gives. A round like a click's, which undo() takes
+  // back; nothing changes (report.no_granularity) when there is no such candidate.
   RoundReport change_granularity(int step);
   // Whether change_granularity(step) would change anything now.
   bool can_change_granularity(int step) const { return next_granularity(step) >= 0; }
