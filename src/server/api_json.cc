@@ -286,6 +286,7 @@ json to_json(const AppStatus& s) {
                        {"message", g.message},
                        {"stale", g.stale},
                        {"clicks", g.clicks},
+                       {"steps", g.steps},
                        {"selected", g.selected},
                        {"can_undo", g.can_undo},
                        {"can_redo", g.can_redo},

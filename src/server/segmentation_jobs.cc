@@ -204,6 +204,8 @@ bool SegmentationJobs::publish(bool apply_selection, const std::string& what, St
   published_.views = std::move(views);
   seg_fingerprint_ = seg_->fingerprint();
   published_.clicks = seg_->clicks().size();
+  published_.steps = size_t(std::count_if(seg_->clicks().begin(), seg_->clicks().end(),
+                                          [](const ClickRecord& c) { return c.granularity != 0; }));
   published_.selected = seg_->selected_count();
   published_.can_undo = seg_->can_undo();
   published_.can_redo = seg_->can_redo();

@@ -54,7 +54,8 @@ struct SegmentationStatus {
   std::string state;    // off, starting, preparing, ready, error
   std::string message;
   bool stale = false;   // the scene was edited since: the next click segments the edited scene
-  size_t clicks = 0, selected = 0;
+  size_t clicks = 0, selected = 0;  // clicks: the log's entries, Larger / Smaller steps included
+  size_t steps = 0;                   // ... of them Larger / Smaller steps
   bool can_undo = false, can_redo = false;
   bool can_grow = false, can_shrink = false;  // SAM has a larger / smaller mask at the last click
   std::vector<ViewEvidence> views;

@@ -110,7 +110,7 @@ function render(s) {
   document.body.dataset.gaussians = String(ed.gaussians);
   document.body.dataset.clicks = String(seg.clicks);
   $('scene-stats').textContent = `${ed.gaussians.toLocaleString()} Gaussians · ${scene.cameras.length} cameras`;
-  $('click-count').textContent = seg.clicks;
+  $('click-count').textContent = seg.clicks - (seg.steps || 0);  // Larger / Smaller steps are not clicks
   $('selected-count').textContent = ed.selected.toLocaleString();
   const tag = $('seg-state');
   tag.textContent = seg.stale ? 'scene edited' : seg.state;
