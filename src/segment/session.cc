@@ -729,10 +729,12 @@ RoundReport Session::run_round(State& next, const State& prev) {
         r, o.object_prior ? object_candidate(r, vs.clicks, o.min_object_score, o.min_surroundings_share) : r.mask_index, vs,
         conflict, switched);
   };
-  // The candidate the user chose in a view, while the click it was chosen for is the view's
-  // latest (UserClick::candidate); -1: the round chooses.
+  // The candidate the user chose in a view (UserClick::candidate) while SAM's answer it
+  // indexes holds: until a later positive click there (or any click, where negative clicks
+  // are given to SAM as points); -1: the round chooses.
   std::vector<int> user_candidate(V, -1);
-  for (const UserClick& uc : next.clicks) user_candidate[size_t(uc.view)] = uc.candidate;
+  for (const UserClick& uc : next.clicks)
+    if (uc.click.label == 1 || !o.negative_regions) user_candidate[size_t(uc.view)] = uc.candidate;
   auto view_candidate = [&](size_t k, const models::SegmentResult& r, const ViewState& vs, bool* conflict = nullptr,
                             bool* switched = nullptr) {
     const int u = user_candidate[k];

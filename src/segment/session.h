@@ -208,8 +208,9 @@ struct UserClick {
   int view = 0;
   Click click;
   // The candidate of SAM's answer in this view that the user chose for the click
-  // (Session::change_granularity), or -1: the session chooses. It holds while this is the
-  // view's latest click: a later click there gets a new answer from SAM.
+  // (Session::change_granularity), or -1: the session chooses. It holds until a later
+  // positive click in the view, which gets a new answer from SAM (a negative click cuts its
+  // region from the chosen mask, SessionOptions::negative_regions).
   int candidate = -1;
 };
 
