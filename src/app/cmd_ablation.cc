@@ -81,12 +81,11 @@ int run_eval_ablation(const Args& args) {
   const int corrective = args.get_int("corrective-clicks", 0);
   if (corrective < 0 || corrective > 20) throw Error("--corrective-clicks must be between 0 and 20");
   if (corrective > 0 && clicks_per_task > 1) throw Error("--corrective-clicks and --clicks-per-task exclude each other");
-  // --granularity-choice: after each task's own click, the user steps the clicked view's
+  // --granularity-choice: after each click, the user steps the clicked view's
   // granularity (Session::change_granularity) up to twice larger and twice smaller and keeps
-  // the best; a row of those figures (the part or whole a click cannot tell apart).
+  // the best; a row of those figures per task (the part or whole a click cannot tell apart).
   const bool granularity_choice = args.has("granularity-choice");
-  if (granularity_choice && (corrective > 0 || clicks_per_task > 1))
-    throw Error("--granularity-choice scores one click per task: not with --corrective-clicks or --clicks-per-task");
+  if (granularity_choice && corrective > 0) throw Error("--granularity-choice and --corrective-clicks exclude each other");
   SegmentSetup setup = parse_segment_setup(args);
   auto sam = load_sam(setup);
   std::vector<EvalConfig> configs = {
@@ -298,6 +297,7 @@ int run_eval_ablation(const Args& args) {
     struct TaskClicks {
       double iou = 0, acc = 0, ms = 0, worst = 1;
       int n = 0;
+      double granularity = 0;  // the best IoU over each click's granularities, summed
     };
     auto add_click = [&](TaskClicks& tc, double iou, double acc, double click_ms) {
       if (tc.n == 0) per_own.push_back(iou);
@@ -309,14 +309,14 @@ int run_eval_ablation(const Args& args) {
     };
     // The best IoU over the click's granularities, the session left as the click made it.
     std::vector<double> per_granularity;
-    auto best_granularity = [&](segment::Session& session, const std::function<double()>& iou) {
+    auto best_granularity = [&](TaskClicks& tc, segment::Session& session, const std::function<double()>& iou) {
       double best = iou();
       for (int step : {1, -1}) {
         int taken = 0;
         for (; taken < 2 && !session.change_granularity(step).no_granularity; ++taken) best = std::max(best, iou());
         for (; taken > 0; --taken) session.undo();
       }
-      per_granularity.push_back(best);
+      tc.granularity += best;
     };
     auto close_task = [&](const TaskClicks& tc) {
       const double n = double(tc.n), iou = tc.iou / n;
@@ -326,6 +326,7 @@ int run_eval_ablation(const Args& args) {
       macc += tc.acc / n;
       worst = std::min(worst, iou);
       ms += tc.ms / n;
+      if (granularity_choice) per_granularity.push_back(tc.granularity / n);
     };
     for (size_t ti = 0; ti < tasks.size(); ++ti) {
       const auto& [s, t] = tasks[ti];
@@ -356,7 +357,7 @@ int run_eval_ablation(const Args& args) {
             for (int later = c + 1; later <= corrective; ++later) per_after[size_t(later)].back() = sc.iou;
           }
         }
-        if (granularity_choice) best_granularity(*session, [&] { return score().iou; });
+        if (granularity_choice) best_granularity(tc, *session, [&] { return score().iou; });
         add_click(tc, sc.iou, sc.accuracy, tm.ms_interaction());
         if (!overlays.empty() && ci == 0) {  // the first configuration's evidence, per task (and click) and view
           std::string name = s->name + "_" + s->scene.objects[size_t(t->object)].name;
@@ -379,7 +380,7 @@ int run_eval_ablation(const Args& args) {
                                                      setup.views_spec, &tm);
         const segment::TaskResult r = segment::score_task(t, b, session->selection(), so.threads);
         if (granularity_choice)
-          best_granularity(*session, [&] { return segment::score_task(t, b, session->selection(), so.threads).iou; });
+          best_granularity(tc, *session, [&] { return segment::score_task(t, b, session->selection(), so.threads).iou; });
         add_click(tc, r.iou, r.accuracy, tm.ms_interaction());
         if (!overlays.empty() && ci == 0) write_overlays(*session, k ? t.name + "_click" + std::to_string(k) : t.name);
       }
@@ -525,8 +526,9 @@ RegisterCommand reg("ablation", "measure the segmentation's design choices on sy
                     "  after each synthetic task's own click, up to N clicks as a user corrects, at the most\n"
                     "  interior pixel of the larger error in the clicked view (positive where the selection\n"
                     "  misses the object, negative where it takes something else); rows per click count.\n"
-                    "  --granularity-choice: after each task's click, the clicked view's granularity stepped up\n"
-                    "  to twice larger and twice smaller (the web app's Larger/Smaller); a row of the best.\n"
+                    "  --granularity-choice: after each click, the clicked view's granularity stepped up to\n"
+                    "  twice larger and twice smaller (the web app's Larger/Smaller); a row of the best (per\n"
+                    "  task, the mean over its clicks).\n"
                     "  --camera-factor F (eval set): F x the cameras of each synthetic capture, F - 1 more\n"
                     "  between each camera and the next along its path. Synthetic tasks vote with every camera\n"
                     "  unless --views is given (--views auto: the K views segment chooses, as for a capture of\n"

@@ -4,7 +4,7 @@
 // and on the server) and checks that the exported PLY has fewer Gaussians and that the
 // object's pixels changed in a render. On the way: the highlight toggle, isolate / hide /
 // show all (server renders and the WebGL view), double-click focus and orbiting around the
-// picked point, and the WebGL view's view-dependent colour against the server render. Chromium runs WebGL2 on SwiftShader (no GPU). Screenshots (1366x768) go to
+// picked point, + Larger and its undo, and the WebGL view's view-dependent colour against the server render. Chromium runs WebGL2 on SwiftShader (no GPU). Screenshots (1366x768) go to
 // $ISEGMAN_E2E_WORK/screenshots.
 // Exit 77 (skipped) when chromium, playwright-core or the SAM models are absent.
 import { spawn, execFileSync } from 'node:child_process';
@@ -182,8 +182,6 @@ async function displayChecks(page, fx, selected) {
     'hide / isolate are display only: the scene and the history are unchanged');
 }
 
-// Double click on the object: the free camera orbits around the picked surface point,
-// which lies on the selected object; a double click sends no segmentation click.
 // + Larger / − Smaller: a step of the last click's mask through SAM's answers, one history
 // step that undo walks back like a click, with no mark of its own on the view.
 async function granularityChecks(page, selected) {
@@ -201,6 +199,8 @@ async function granularityChecks(page, selected) {
   log('ok: undo takes the larger mask back to the click\'s own selection');
 }
 
+// Double click on the object: the free camera orbits around the picked surface point,
+// which lies on the selected object; a double click sends no segmentation click.
 async function focusChecks(page, fx) {
   await page.selectOption('#camera-select', String(fx.camera));
   await page.waitForSelector(`#view-img[data-key="v${fx.camera}"]:visible`);
