@@ -119,6 +119,11 @@ bool holds(const Mask& mask, const Click& k) {
   return mask.at(x, y);
 }
 
+// Whether mask holds every positive click's pixel.
+bool holds_positives(const Mask& mask, const std::vector<Click>& clicks) {
+  return std::all_of(clicks.begin(), clicks.end(), [&](const Click& k) { return k.label != 1 || holds(mask, k); });
+}
+
 // A clicked view's candidate (the user's view, or one a click was propagated to). SAM's own
 // choice, unless it looks like the surroundings (the wall or floor around the click: a pale
 // skull on a pale wall, a rug on the floor) while another candidate holding every positive
@@ -135,9 +140,8 @@ int object_candidate(const models::SegmentResult& r, const std::vector<Click>& c
   for (size_t c = 0; c < r.candidates.size(); ++c) {
     const Mask& m = r.candidates[c];
     if (int(c) == r.mask_index || r.candidate_scores[c] < min_score || borders_reached(m) > 1) continue;
-    const bool holds_all = std::all_of(clicks.begin(), clicks.end(), [&](const Click& k) { return k.label != 1 || holds(m, k); });
     const size_t area = mask_area(m);
-    if (holds_all && area > best_area) {
+    if (holds_positives(m, clicks) && area > best_area) {
       best = int(c);
       best_area = area;
     }
@@ -377,14 +381,8 @@ int Session::next_granularity(int step) const {
   double chosen_area = 0;
   for (size_t c = 0; c < cands.size(); ++c) {
     const Mask& m = cands[c];
-    bool holds = true;
-    for (const Click& k : vs.clicks) {
-      if (k.label != 1) continue;
-      const int x = int(std::floor(k.x)), y = int(std::floor(k.y));
-      holds = holds && x >= 0 && y >= 0 && x < m.width && y < m.height && m.at(x, y);
-    }
     const double area = double(mask_area(m));
-    if (!holds || !(step > 0 ? area > 1.05 * used : area < used / 1.05)) continue;
+    if (!holds_positives(m, vs.clicks) || !(step > 0 ? area > 1.05 * used : area < used / 1.05)) continue;
     if (chosen < 0 || (step > 0 ? area < chosen_area : area > chosen_area)) {
       chosen = int(c);
       chosen_area = area;

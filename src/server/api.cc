@@ -242,10 +242,8 @@ void register_routes(httplib::Server& server, AppState& app) {
   // The last click's mask one step larger or smaller: {"step": 1 | -1}.
   routes->post("/api/click/granularity", guarded([&app](const httplib::Request& req, httplib::Response& res) {
     const json body = parse_body(req.body);
-    if (!body.is_object() || !body.contains("step") || !body["step"].is_number_integer() ||
-        (body["step"].get<long long>() != 1 && body["step"].get<long long>() != -1))
-      bad_request("granularity: expected {\"step\": 1} (larger) or {\"step\": -1} (smaller)");
-    send_json(res, {{"job", app.granularity(int(body["step"].get<long long>()))}}, 202);
+    json_only_keys(body, {"step"});
+    send_json(res, {{"job", app.granularity(json_integer(body, "step", -1, 1))}}, 202);  // 0: refused by the job's check
   }));
   routes->post("/api/click/undo", guarded([&app](const httplib::Request&, httplib::Response& res) {
     send_json(res, {{"job", app.undo_click()}}, 202);
