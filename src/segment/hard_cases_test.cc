@@ -661,6 +661,31 @@ TEST(HardCases, ALaterClickAmongThePlantsLeavesDoesNotPeelThem) {
   EXPECT_GT(three.iou, 0.95);
 }
 
+TEST(HardCases, ALaterClickAtASelectedObjectsEdgeDoesNotPeelTheObjectAway) {
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // One click selects the rocking horse behind the toy chest (89.2) and the doll's house
+  // (98.3); the corrective click adds what they miss at an edge: the horse's leg just above
+  // the chest's lid, the house's side beside the horse's head. Around those pixels the
+  // selected object's own near side is flanked by what lies behind it, so seeing through
+  // "occluders" there peeled the object itself away and the peeled view, voting first, took
+  // what lies behind: 3.5 and 2.1. Where most of the selection's blending weight in the view
+  // lies nearer than the cut, a click is not seen through.
+  SessionOptions unguarded;
+  unguarded.see_through_options.max_selection_peeled = 1.01;
+  for (const char* name : {"playroom/rocking_horse", "playroom/dolls_house"}) {
+    const Corrected ours = after_corrective_clicks(name, SessionOptions());
+    const Corrected peeling = after_corrective_clicks(name, unguarded);
+    std::printf("[ hard ] %s: one corrective click at (%.1f, %.1f): %.1f%% (%d peeled views); peeling the selection "
+                "away %.1f%% (%d)\n",
+                name, ours.last.x, ours.last.y, 100 * ours.iou, peeled_views(*ours.session), 100 * peeling.iou,
+                peeled_views(*peeling.session));
+    ASSERT_EQ(ours.session->clicks().size(), 2u);
+    EXPECT_EQ(peeled_views(*ours.session), 0) << name;
+    EXPECT_GT(ours.iou, 0.85) << name;
+    EXPECT_LT(peeling.iou, 0.1) << name;
+  }
+}
+
 TEST(HardCases, ANegativeClickOnTheNeighbourLeavesTheClickedBook) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // One click on a red book in a row selects the row: SAM's choice in every view. The next

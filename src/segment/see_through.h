@@ -33,6 +33,11 @@ struct SeeThroughOptions {
   // No peeling when the clicked pixel gives more than this blending weight to things nearer
   // than its surface (a click through a gap sees the surface clearly: at most ~0.05 there).
   double max_click_front_weight = 0.25;
+  // No peeling when this share of the current selection's blending weight in the view comes
+  // from Gaussians nearer than the cut: a later click at the edge of a selected object (the
+  // sliver the first click missed) can find the object's own near side flanked by what lies
+  // behind it, and the cut would peel the selection itself away.
+  double max_selection_peeled = 0.5;
 };
 
 struct Occluders {
