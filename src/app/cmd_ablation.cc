@@ -137,6 +137,8 @@ int run_eval_ablation(const Args& args) {
          o.see_through_options.min_peeled_share = 0;
          o.consensus_on_peeled = true;
        }},
+      {"- selection not peeled", [](segment::SessionOptions& o) { o.see_through_options.max_selection_peeled = 1.01; }},
+      {"- negative clicks only remove", [](segment::SessionOptions& o) { o.negative_only_removes = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

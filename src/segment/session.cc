@@ -314,6 +314,10 @@ RoundReport Session::click(int view, const Click& c) {
   next.clicks = state_.clicks;
   next.clicks.push_back({view, c});
   RoundReport report = run_round(next, state_);
+  if (c.label == 0 && options_.negative_only_removes && next.selection.size() == state_.selection.size()) {
+    for (size_t g = 0; g < next.selection.size(); ++g) next.selection[g] = next.selection[g] && state_.selection[g];
+    report.selected = size_t(std::count(next.selection.begin(), next.selection.end(), true));
+  }
   history_.push_back(std::move(state_));
   state_ = std::move(next);
   return report;

