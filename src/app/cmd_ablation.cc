@@ -431,6 +431,12 @@ int run_eval_ablation(const Args& args) {
         for (double p : v) std::printf(" %.1f |", 100 * p);
         std::printf("\n");
       }
+      std::printf("\nclicks needed (synthetic, at most %d; NoC): ", corrective + 1);
+      for (double target : {0.85, 0.90}) {
+        const segment::ClicksNeeded noc = segment::clicks_needed(per_after, target);
+        std::printf("NoC@%d %.2f (%zu of %zu never reach it)%s", int(std::lround(100 * target)), noc.mean, noc.never,
+                    per_after[0].size(), target < 0.9 ? "; " : "\n");
+      }
     }
     std::fflush(stdout);
   }

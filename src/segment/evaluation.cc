@@ -92,6 +92,23 @@ std::vector<EvalTask> find_tasks(const std::string& path, const std::string& fix
   return tasks;
 }
 
+ClicksNeeded clicks_needed(const std::vector<std::vector<double>>& iou_after, double target) {
+  ClicksNeeded out;
+  if (iou_after.empty() || iou_after[0].empty()) return out;
+  const size_t most = iou_after.size(), tasks = iou_after[0].size();
+  for (const auto& row : iou_after)
+    if (row.size() != tasks) throw Error("clicks_needed: every click count needs one IoU per task");
+  double sum = 0;
+  for (size_t t = 0; t < tasks; ++t) {
+    size_t k = 0;
+    while (k < most && iou_after[k][t] < target) ++k;
+    out.never += k == most;
+    sum += double(std::min(k + 1, most));
+  }
+  out.mean = sum / double(tasks);
+  return out;
+}
+
 MaskScore score_mask(const Image& pred, const Image& truth) {
   if (pred.width != truth.width || pred.height != truth.height) throw Error("score_mask: sizes differ");
   size_t inter = 0, uni = 0, correct = 0;

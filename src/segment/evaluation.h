@@ -44,6 +44,16 @@ struct TaskResult {
 // IoU and pixel accuracy of a predicted binary mask (> 0.5) against ground truth (> 0).
 MaskScore score_mask(const Image& predicted, const Image& truth);
 
+// Interactive segmentation's usual summary (NoC, as RITM and SAM report it): `iou_after[k][t]`
+// is task t's IoU after k + 1 clicks. Per task, the clicks until its IoU first reaches
+// `target`, counted as the most clicks run (iou_after.size()) where it never does; the mean
+// over tasks, and how many never reach it.
+struct ClicksNeeded {
+  double mean = 0;
+  size_t never = 0;
+};
+ClicksNeeded clicks_needed(const std::vector<std::vector<double>>& iou_after, double target);
+
 // The selection's mask in a camera at the given resolution: coverage > 0.5.
 Image selection_mask(const GaussianScene& scene, const Camera& camera, const std::vector<bool>& selection, int width,
                      int height, int threads = 0);

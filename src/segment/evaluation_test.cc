@@ -120,5 +120,21 @@ TEST(Evaluation, EvaluatesAGeneratedTaskFromPromptsAlone) {
   fs::remove_all(root);
 }
 
+TEST(Evaluation, ClicksNeededCountsTheFirstClickThatReachesTheTarget) {
+  // Three tasks over three clicks: the first reaches 0.9 at once, the second at its third
+  // click (after falling at the second), the third never (counted as 3).
+  const std::vector<std::vector<double>> after{{0.95, 0.80, 0.30}, {0.96, 0.10, 0.50}, {0.97, 0.92, 0.88}};
+  const ClicksNeeded at90 = clicks_needed(after, 0.90);
+  EXPECT_DOUBLE_EQ(at90.mean, (1 + 3 + 3) / 3.0);
+  EXPECT_EQ(at90.never, 1u);
+  const ClicksNeeded at85 = clicks_needed(after, 0.85);
+  EXPECT_DOUBLE_EQ(at85.mean, (1 + 3 + 3) / 3.0);
+  EXPECT_EQ(at85.never, 0u);
+  const ClicksNeeded at50 = clicks_needed(after, 0.50);
+  EXPECT_DOUBLE_EQ(at50.mean, (1 + 1 + 2) / 3.0);
+  EXPECT_EQ(clicks_needed({}, 0.9).never, 0u);
+  EXPECT_THROW(clicks_needed({{0.5, 0.6}, {0.7}}, 0.9), Error);
+}
+
 }  // namespace
 }  // namespace isegman::segment
