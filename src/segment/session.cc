@@ -274,12 +274,11 @@ Image Session::selection_coverage(int view) const {
   return rasterize(views_.at(size_t(view)).frame, s, &values).value;
 }
 
-double Session::selection_share_nearer(int view, double depth) const {
+double Session::selection_share_nearer(int view, double depth, const Image& coverage) const {
   const Camera& cam = views_.at(size_t(view)).camera;
-  std::vector<float> all(state_.selection.size()), nearer(state_.selection.size());
-  for (size_t i = 0; i < all.size(); ++i) {
+  std::vector<float> nearer(state_.selection.size());
+  for (size_t i = 0; i < nearer.size(); ++i) {
     if (!state_.selection[i]) continue;
-    all[i] = 1.f;
     const float* p = &scene_.positions[3 * i];
     nearer[i] = cam.world_to_camera(Vec3{p[0], p[1], p[2]}).z < depth ? 1.f : 0.f;
   }
@@ -287,10 +286,9 @@ double Session::selection_share_nearer(int view, double depth) const {
   s.color = false;
   s.depth = false;
   s.threads = options_.threads;
-  const PreparedFrame& frame = views_.at(size_t(view)).frame;
   const auto sum = [](const Image& im) { return std::accumulate(im.data.begin(), im.data.end(), 0.0); };
-  const double total = sum(rasterize(frame, s, &all).value);
-  return total > 0 ? sum(rasterize(frame, s, &nearer).value) / total : 0.0;
+  const double total = sum(coverage);
+  return total > 0 ? sum(rasterize(views_.at(size_t(view)).frame, s, &nearer).value) / total : 0.0;
 }
 
 RoundReport Session::click(int view, const Click& c) {
@@ -364,7 +362,7 @@ int Session::see_through_view(int view, const Click& c) {
   if (std::find(state_.selection.begin(), state_.selection.end(), true) != state_.selection.end()) {
     const Image covered = selection_coverage(view);
     if (holds_most([&](uint32_t p) { return p < covered.data.size() && covered.data[p] > 0.5f; })) return view;
-    if (selection_share_nearer(view, occ.cut) >= so.max_selection_peeled) return view;
+    if (selection_share_nearer(view, occ.cut, covered) >= so.max_selection_peeled) return view;
   }
   // Nor where SAM already takes them in with the clicked surface (the near leaves of the same
   // plant): they are part of what the user means. Unless they stand apart in depth and,

@@ -327,9 +327,10 @@ class Session {
   Image selection_coverage(int view) const;
 
  private:
-  // The share of the current selection's blending weight in a view that comes from Gaussians
-  // whose centres lie nearer than camera-space `depth` (0 for an empty selection).
-  double selection_share_nearer(int view, double depth) const;
+  // The share of the current selection's blending weight in a view (its `coverage` there,
+  // selection_coverage) that comes from Gaussians whose centres lie nearer than camera-space
+  // `depth` (0 for an empty selection).
+  double selection_share_nearer(int view, double depth, const Image& coverage) const;
   struct State {
     std::vector<UserClick> clicks;
     std::vector<ViewState> views;
