@@ -113,6 +113,8 @@ const char* const kSegmentOptionsHelp =
     "  --sam-negatives               give negative clicks to SAM instead of cutting their region\n"
     "  --no-negative-granularity     keep a clicked view's candidate that takes in what a negative\n"
     "                                click points at (only cut that region from it)\n"
+    "  --negatives-may-add           let a negative click's round select what the selection before it\n"
+    "                                did not hold (default: a negative click only takes out)\n"
     "  --sam-all-clicks              give a view's positive clicks to SAM together (one answer) instead\n"
     "                                of segmenting each alone and taking the union\n"
     "  --photos                      segment the source photos instead of renders\n"
@@ -130,7 +132,7 @@ const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-see-through-enclosures", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "no-far-behind-check", "keep-whole-islands", "keep-apart-islands", "keep-seen-behind", "keep-behind-click", "keep-behind-pieces", "part-votes-against", "no-attached-parts", "wide-views-vouch", "keep-beyond-part", "no-negative-islands",
                                           "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
-                                          "sam-negatives", "sam-all-clicks", "no-negative-granularity"};
+                                          "sam-negatives", "sam-all-clicks", "no-negative-granularity", "negatives-may-add"};
   return f;
 }
 
@@ -193,6 +195,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.negative_regions = !args.has("sam-negatives");
   s.session.click_by_click = !args.has("sam-all-clicks");
   s.session.negative_granularity = !args.has("no-negative-granularity");
+  s.session.negative_only_removes = !args.has("negatives-may-add");
   s.session.selection_prompt_rounds = args.get_int("selection-prompts", 2);
   if (s.session.selection_prompt_rounds < 0 || s.session.selection_prompt_rounds > 10)
     throw Error("--selection-prompts must be between 0 and 10");

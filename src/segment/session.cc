@@ -61,7 +61,7 @@ SessionOptions paper_pipeline(SessionOptions o) {
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;
   o.whole_islands.enabled = o.negative_islands = o.beyond_part.band = o.beyond_part.whole = false;
   o.apart.enabled = o.part_leaves_selection_open = false;
-  o.attached_parts.enabled = false;
+  o.attached_parts.enabled = o.negative_only_removes = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
   o.propagation.hidden_fallback = true;
