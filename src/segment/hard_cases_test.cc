@@ -688,9 +688,8 @@ TEST(HardCases, ALaterClickAtASelectedObjectsEdgeDoesNotPeelTheObjectAway) {
 
 TEST(HardCases, ASecondNegativeClickOnTheMugsAddsNothing) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
-  // The middle one of three touching mugs: one click selects the row, a negative click on
-  // the right-hand mug, then one on the left-hand mug (the clicks a corrective run gives).
-  // The last round re-votes every view, and the masks the negative clicks reshape took in
+  // The middle one of three touching mugs: one click selects the row, then two negative
+  // clicks beside the clicked mug (the clicks a corrective run gives). The last round re-votes every view, and the masks the negative clicks reshape took in
   // 949 more Gaussians of the mugs than the selection before it held. A negative click's
   // round now keeps nothing the selection before it did not hold.
   SessionOptions adding;
