@@ -294,6 +294,15 @@ try {
   await page.waitForTimeout(1200);
   check(await page.getAttribute('body', 'data-clicks') === '1' && await page.getAttribute('body', 'data-busy') === 'false',
     'a click sends one click');
+  // The same click again is no click: no second click, no history entry.
+  const entriesBefore = (await (await fetch(`${url}api/status`)).json()).history.entries.length;
+  await page.mouse.click(box.x + fx.click[0] * box.width, box.y + fx.click[1] * box.height);
+  await page.waitForTimeout(300);
+  await page.waitForSelector('body[data-busy="false"]', { timeout: 60000 });
+  await page.waitForTimeout(1200);
+  const again = await (await fetch(`${url}api/status`)).json();
+  check(again.segmentation.clicks === 1 && again.history.entries.length === entriesBefore &&
+    await page.getAttribute('body', 'data-clicks') === '1', 'the same click again is no click (no history entry)');
   const selected = Number(await page.getAttribute('body', 'data-selected'));
   log(`selected ${selected} Gaussians (object has ${fx.object_gaussians})`);
   check(selected > 0.5 * fx.object_gaussians && selected < 1.6 * fx.object_gaussians,

@@ -64,10 +64,19 @@ async function click(target) {
   const body = { x: target.x * cam.width, y: target.y * cam.height, label: target.label };
   if (target.view !== undefined) body.view = target.view; else body.camera = target.camera;
   const mark = { key: target.key, x: target.x, y: target.y, label: target.label };
+  const redoBefore = redoMarks;
   marks.push(mark); redoMarks = [];
   showMarks();
   const ok = await runJob('segmenting', () => api.post('/api/click', body));
-  if (!ok) { marks = marks.filter((m) => m !== mark); showMarks(); }
+  if (!ok) { marks = marks.filter((m) => m !== mark); showMarks(); return; }
+  // The same click again is no click (the server logs it and changes nothing): its mark
+  // goes, and the redo marks stay, as the server's redo does.
+  const st = await api.get('/api/status').catch(() => null);
+  if (st && !st.busy && st.segmentation && st.segmentation.clicks < marks.length && marks[marks.length - 1] === mark) {
+    marks.pop();
+    redoMarks = redoBefore;
+    showMarks();
+  }
 }
 
 // The last click's mask one step larger or smaller among SAM's answers at it: one click
