@@ -298,16 +298,24 @@ RoundReport Session::click(int view, const Click& c) {
     throw Error("click (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ") is outside view '" +
                 views_[size_t(view)].name + "' (" + std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
   if (c.label != 0 && c.label != 1) throw Error("click label must be 1 (positive) or 0 (negative)");
-  view = see_through_view(view, c);
-  // The same click again (a double click, a repeated request) is not new information.
+  // The same click again (a double click, a repeated request) is not new information. It is
+  // known before seeing through occluders (a render and SAM decodes): the earlier click may
+  // lie in a view peeled from this one.
+  auto same_view = [&](int v) {
+    if (v == view) return true;
+    for (const auto& [key, index] : peeled_)
+      if (index == v && key.first == view) return true;
+    return false;
+  };
   for (const UserClick& old : state_.clicks)
-    if (old.view == view && old.click.label == c.label && std::floor(old.click.x) == std::floor(c.x) &&
+    if (same_view(old.view) && old.click.label == c.label && std::floor(old.click.x) == std::floor(c.x) &&
         std::floor(old.click.y) == std::floor(c.y)) {
       RoundReport same;
       same.duplicate = true;
       same.selected = size_t(std::count(state_.selection.begin(), state_.selection.end(), true));
       return same;
     }
+  view = see_through_view(view, c);
   State next;  // run_round derives the views, votes and selection from the clicks
   next.clicks = state_.clicks;
   next.clicks.push_back({view, c});
