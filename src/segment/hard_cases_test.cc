@@ -689,9 +689,10 @@ TEST(HardCases, ALaterClickAtASelectedObjectsEdgeDoesNotPeelTheObjectAway) {
 TEST(HardCases, ASecondNegativeClickOnTheMugsAddsNothing) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // The middle one of three touching mugs: one click selects the row, then two negative
-  // clicks beside the clicked mug (the clicks a corrective run gives). The last round re-votes every view, and the masks the negative clicks reshape took in
-  // 949 more Gaussians of the mugs than the selection before it held. A negative click's
-  // round now keeps nothing the selection before it did not hold.
+  // clicks beside the clicked mug (the clicks a corrective run gives). The last round
+  // re-votes every view, and the masks the negative clicks reshape took in 949 more
+  // Gaussians of the mugs than the selection before it held. A negative click's round now
+  // keeps nothing the selection before it did not hold.
   SessionOptions adding;
   adding.negative_only_removes = false;
   const Corrected two = after_corrective_clicks("workshop/mug", SessionOptions(), 1);

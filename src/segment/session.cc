@@ -264,14 +264,18 @@ double Session::min_total() const {
   return std::min(options_.min_total_weight, options_.min_total_share * m[m.size() / 2]);
 }
 
-Image Session::selection_coverage(int view) const {
-  std::vector<float> values(state_.selection.size());
-  for (size_t i = 0; i < values.size(); ++i) values[i] = state_.selection[i] ? 1.f : 0.f;
+Image Session::values_coverage(int view, const std::vector<float>& values) const {
   RenderSettings s;
   s.color = false;
   s.depth = false;
   s.threads = options_.threads;
   return rasterize(views_.at(size_t(view)).frame, s, &values).value;
+}
+
+Image Session::selection_coverage(int view) const {
+  std::vector<float> values(state_.selection.size());
+  for (size_t i = 0; i < values.size(); ++i) values[i] = state_.selection[i] ? 1.f : 0.f;
+  return values_coverage(view, values);
 }
 
 double Session::selection_share_nearer(int view, double depth, const Image& coverage) const {
@@ -282,13 +286,9 @@ double Session::selection_share_nearer(int view, double depth, const Image& cove
     const float* p = &scene_.positions[3 * i];
     nearer[i] = cam.world_to_camera(Vec3{p[0], p[1], p[2]}).z < depth ? 1.f : 0.f;
   }
-  RenderSettings s;
-  s.color = false;
-  s.depth = false;
-  s.threads = options_.threads;
   const auto sum = [](const Image& im) { return std::accumulate(im.data.begin(), im.data.end(), 0.0); };
   const double total = sum(coverage);
-  return total > 0 ? sum(rasterize(views_.at(size_t(view)).frame, s, &nearer).value) / total : 0.0;
+  return total > 0 ? sum(values_coverage(view, nearer)) / total : 0.0;
 }
 
 RoundReport Session::click(int view, const Click& c) {

@@ -327,6 +327,8 @@ class Session {
   Image selection_coverage(int view) const;
 
  private:
+  // The blend of per-Gaussian values (one per Gaussian) in a view: with 0/1 values a set's coverage.
+  Image values_coverage(int view, const std::vector<float>& values) const;
   // The share of the current selection's blending weight in a view (its `coverage` there,
   // selection_coverage) that comes from Gaussians whose centres lie nearer than camera-space
   // `depth` (0 for an empty selection).
