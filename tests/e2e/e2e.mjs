@@ -270,6 +270,9 @@ try {
   await page.goto(url);
   await page.waitForSelector('#view-img[data-rendered]', { timeout: 30000 });
   await page.screenshot({ path: path.join(shots, '01-loading.png') });
+  // Where the view is while the server still prepares (the evidence strip empty, when it is).
+  const loadingBox = await (await page.$('#view-img')).boundingBox();
+  const stripEmptyWhileLoading = await page.$$eval('#strip .thumb', (e) => e.length === 0);
   // While the server prepares the segmentation: the WebGL view's colours against its renders.
   await viewDependentColourChecks({ context, bin, scene: fx.sh_scene, outDir: path.join(work, 'sh-out'), shots, check, log });
   await page.waitForSelector('body[data-seg="ready"][data-busy="false"]', { timeout: 150000 });
@@ -318,6 +321,14 @@ try {
   check(selected > 0.5 * fx.object_gaussians && selected < 1.6 * fx.object_gaussians,
     'the selection covers the clicked object (50-160% of its Gaussians)');
   await page.waitForFunction(() => document.querySelectorAll('#strip .thumb').length > 0);
+  await page.waitForTimeout(300);
+  // The view stays put while the evidence strip below it fills (views, then each click's
+  // masks): a view that shrank under the pointer turns a click aimed at it into another pixel.
+  const boxAfter = await img.boundingBox();
+  const moved = (a, b) => Math.max(...['x', 'y', 'width', 'height'].map((k) => Math.abs(a[k] - b[k])));
+  check(moved(boxAfter, box) < 0.5 && moved(boxAfter, loadingBox) < 0.5,
+    `the view does not move as the evidence strip fills (${stripEmptyWhileLoading ? 'empty' : 'already filled'} ` +
+    `while loading): ${JSON.stringify(loadingBox)}, at the click ${JSON.stringify(box)}, after ${JSON.stringify(boxAfter)}`);
   const accepted = await page.$$eval('#strip .thumb[data-status="accepted"]', (e) => e.length);
   check(accepted >= 2, `evidence strip shows accepted views (${accepted})`);
   const clickedTip = await page.$eval(`#strip .thumb[data-camera="${fx.camera}"]`, (e) => e.title);
