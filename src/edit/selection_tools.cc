@@ -60,31 +60,35 @@ Selection select_sphere(const GaussianScene& scene, const Vec3& c, double r, Reg
   return with_mask(scene, std::move(m));
 }
 
-Selection select_opacity(const GaussianScene& scene, double lo, double hi) {
-  const std::string op = "opacity selection";
-  check_finite(lo, "minimum opacity", op);
-  check_finite(hi, "maximum opacity", op);
-  if (lo > hi) throw Error(op, "minimum opacity exceeds the maximum");
+namespace {
+
+// The Gaussians whose `value(i)` lies in [lo, hi]; `what` names the value in errors.
+template <class Value>
+Selection select_in_range(const GaussianScene& scene, double lo, double hi, const std::string& what, Value value) {
+  const std::string op = what + " selection";
+  check_finite(lo, "minimum " + what, op);
+  check_finite(hi, "maximum " + what, op);
+  if (lo > hi) throw Error(op, "minimum " + what + " exceeds the maximum");
   std::vector<bool> m(scene.size());
   for (size_t i = 0; i < scene.size(); ++i) {
-    const double a = 1.0 / (1.0 + std::exp(-double(scene.opacity[i])));
-    m[i] = a >= lo && a <= hi;
+    const double v = value(i);
+    m[i] = v >= lo && v <= hi;
   }
   return with_mask(scene, std::move(m));
 }
 
+}  // namespace
+
+Selection select_opacity(const GaussianScene& scene, double lo, double hi) {
+  return select_in_range(scene, lo, hi, "opacity",
+                         [&](size_t i) { return 1.0 / (1.0 + std::exp(-double(scene.opacity[i]))); });
+}
+
 Selection select_size(const GaussianScene& scene, double lo, double hi) {
-  const std::string op = "size selection";
-  check_finite(lo, "minimum size", op);
-  check_finite(hi, "maximum size", op);
-  if (lo > hi) throw Error(op, "minimum size exceeds the maximum");
-  std::vector<bool> m(scene.size());
-  for (size_t i = 0; i < scene.size(); ++i) {
+  return select_in_range(scene, lo, hi, "size", [&](size_t i) {
     const float* s = &scene.scales[3 * i];
-    const double size = std::exp(double(std::max({s[0], s[1], s[2]})));
-    m[i] = size >= lo && size <= hi;
-  }
-  return with_mask(scene, std::move(m));
+    return std::exp(double(std::max({s[0], s[1], s[2]})));
+  });
 }
 
 Selection invert(const Selection& a) {
