@@ -265,7 +265,7 @@ json to_json(const AppStatus& s) {
   j["edit"] = {{"gaussians", e.gaussians},   {"selected", e.selected},     {"can_undo", e.can_undo},
                {"can_redo", e.can_redo},     {"undo_steps", e.undo_steps}, {"redo_steps", e.redo_steps},
                {"notice", e.notice},         {"revision", e.revision}};
-  j["history"] = to_json(s.history);
+  j["history"] = to_json(e.history);
   const SegmentationStatus& g = s.segmentation;
   json views = json::array();
   for (const ViewEvidence& v : g.views)

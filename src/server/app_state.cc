@@ -92,7 +92,6 @@ AppStatus AppState::status() const {
   s.queued = jobs_.queued();
   s.edit = scene_.status();
   s.segmentation = segmentation_.status(s.edit.fingerprint);
-  s.history = scene_.timeline();
   s.log = log_.entries();
   s.version = log_.version() + s.edit.revision;
   return s;

@@ -76,7 +76,6 @@ struct AppStatus {
   size_t queued = 0;
   EditStatus edit;
   SegmentationStatus segmentation;
-  Timeline history;  // the one history of clicks, selections and edits
   std::vector<LogEntry> log;
   uint64_t version = 0;
 };

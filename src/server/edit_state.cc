@@ -86,6 +86,7 @@ EditStatus EditState::status() const {
   s.notice = session_.notice();
   s.revision = revision_.load();
   s.fingerprint = session_.fingerprint();
+  s.history = timeline_;
   return s;
 }
 
@@ -105,11 +106,6 @@ void EditState::record(StepKind kind, const std::string& label) {
     timeline_.entries.erase(timeline_.entries.begin(), timeline_.entries.begin() + long(drop));
     timeline_.cursor = kept;
   }
-}
-
-Timeline EditState::timeline() const {
-  std::shared_lock<std::shared_mutex> lock(mu_);
-  return timeline_;
 }
 
 EditResult EditState::select(const edit::SelectOp& op) {

@@ -74,6 +74,9 @@ struct EditStatus {
   std::string notice;
   uint64_t revision = 0;
   uint64_t fingerprint = 0;
+  // The one history of clicks, selections and edits, read under the same lock as the
+  // counts: a page that saw the scene after a redo must also see the redo's position.
+  Timeline history;
 };
 
 struct SelectionBounds {
@@ -113,7 +116,6 @@ class EditState {
   // Walk the one history; AppError(kConflict) when there is no step (of that filter).
   EditResult undo(StepFilter filter = StepFilter::kAny);
   EditResult redo(StepFilter filter = StepFilter::kAny);
-  Timeline timeline() const;
   SelectionBounds selection_bounds() const;
 
   // Renders the edited scene, the selection tinted at opacity `tint` (0: not highlighted),

@@ -245,6 +245,7 @@ async function focusChecks(page, fx) {
 }
 
 let page = null;
+const pageErrors = [];  // printed with a failure too
 try {
   const fx = JSON.parse(execFileSync(fixtureBin, [path.join(work, 'fixture')]).toString());
   log(`fixture: object '${fx.object}' (${fx.object_gaussians} of ${fx.total_gaussians} Gaussians) in camera ${fx.camera}, click at`, fx.click);
@@ -260,7 +261,6 @@ try {
     acceptDownloads: true,
   });
   page = context.pages()[0] || await context.newPage();
-  const pageErrors = [];
   page.on('pageerror', (e) => pageErrors.push(e.message));
   page.on('console', (m) => { if (m.type() === 'error') pageErrors.push(m.text()); });
 
@@ -364,8 +364,8 @@ try {
 
   // One history: Ctrl+Z walks back across the edit and then the click (to the start),
   // Ctrl+Shift+Z forward again; the panel lists the steps with the current position.
-  check(await page.getAttribute('body', 'data-history-steps') === '2' && await page.getAttribute('body', 'data-history-cursor') === '2',
-    'the history lists the click and the removal');
+  const steps = await page.getAttribute('body', 'data-history-steps'), cursor = await page.getAttribute('body', 'data-history-cursor');
+  check(steps === '2' && cursor === '2', `the history lists the click and the removal (step ${cursor} of ${steps})`);
   await page.keyboard.press('Control+z');
   await page.waitForSelector(`body[data-gaussians="${total}"][data-history-cursor="1"]`, { timeout: 20000 });
   await page.keyboard.press('Control+z');
@@ -426,6 +426,7 @@ try {
   process.exit(0);
 } catch (e) {
   console.error(`e2e failed: ${e.stack || e}`);
+  if (pageErrors.length) console.error(`errors in the page: ${pageErrors.join(' | ')}`);
   try { if (page) await page.screenshot({ path: path.join(shots, 'failure.png') }); } catch (_) { /* ignore */ }
   console.error(`--- server output ---\n${serverLog.slice(-4000)}`);
   try { if (context) await context.close(); } catch (_) { /* ignore */ }

@@ -176,11 +176,20 @@ function render(s) {
   }
 }
 
+// Polls overlap (a timed one still in flight when an action asks for one now), and their
+// answers can arrive out of order: an answer older than the one shown would put the page
+// back to before the action, so it is dropped.
+let pollsSent = 0, pollShown = 0;
 async function poll(now = false) {
   clearTimeout(pollTimer);
+  const sent = ++pollsSent;
   try {
-    status = await api.get('/api/status');
-    render(status);
+    const s = await api.get('/api/status');
+    if (sent > pollShown) {
+      pollShown = sent;
+      status = s;
+      render(status);
+    }
   } catch (e) {
     $('status-pill').textContent = `server unreachable: ${e.message}`;
     $('status-pill').className = 'pill err';
