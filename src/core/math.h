@@ -26,6 +26,14 @@ struct Vec3 {
   Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
 };
 
+// The logistic function: a Gaussian's stored logit opacity to its opacity in (0, 1). One
+// template for the renderer's float, its backward pass's Real and the double that range
+// selections and quantisers compare exactly.
+template <typename Real>
+inline Real sigmoid(Real x) {
+  return Real(1) / (Real(1) + std::exp(-x));
+}
+
 inline Vec3 operator*(double s, const Vec3& v) { return v * s; }
 inline double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline Vec3 cross(const Vec3& a, const Vec3& b) {

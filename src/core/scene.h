@@ -50,7 +50,7 @@ struct GaussianScene {
   Quat rotation(size_t i) const {
     return {rotations[4 * i], rotations[4 * i + 1], rotations[4 * i + 2], rotations[4 * i + 3]};
   }
-  float activated_opacity(size_t i) const { return 1.0f / (1.0f + std::exp(-opacity[i])); }
+  float activated_opacity(size_t i) const { return sigmoid(opacity[i]); }
   float* sh_of(size_t i) { return sh.data() + i * coeffs() * 3; }
   const float* sh_of(size_t i) const { return sh.data() + i * coeffs() * 3; }
 

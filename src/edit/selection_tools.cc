@@ -81,7 +81,7 @@ Selection select_in_range(const GaussianScene& scene, double lo, double hi, cons
 
 Selection select_opacity(const GaussianScene& scene, double lo, double hi) {
   return select_in_range(scene, lo, hi, "opacity",
-                         [&](size_t i) { return 1.0 / (1.0 + std::exp(-double(scene.opacity[i]))); });
+                         [&](size_t i) { return sigmoid(double(scene.opacity[i])); });
 }
 
 Selection select_size(const GaussianScene& scene, double lo, double hi) {

@@ -317,7 +317,7 @@ std::vector<uint8_t> serialize_compressed_ply(const GaussianScene& scene, bool s
                           pack_unorm(frac(value(i, 2), 2), 11);
       const uint32_t ps = pack_unorm(frac(value(i, 3), 3), 11) << 21 | pack_unorm(frac(value(i, 4), 4), 10) << 11 |
                           pack_unorm(frac(value(i, 5), 5), 11);
-      const double alpha = 1.0 / (1.0 + std::exp(-double(scene.opacity[i])));
+      const double alpha = sigmoid(double(scene.opacity[i]));
       const uint32_t pc = pack_unorm(frac(value(i, 6), 6), 8) << 24 | pack_unorm(frac(value(i, 7), 7), 8) << 16 |
                           pack_unorm(frac(value(i, 8), 8), 8) << 8 | pack_unorm(alpha, 8);
       const Quat q = scene.rotation(i).normalized();

@@ -509,7 +509,7 @@ std::vector<uint8_t> serialize_sog(const GaussianScene& scene, std::vector<std::
   std::vector<uint8_t> ci = image();
   for (size_t i = 0; i < n; ++i) {
     for (int ch = 0; ch < 3; ++ch) ci[4 * i + ch] = nearest(ccb, dc[3 * i + ch]);
-    ci[4 * i + 3] = uint8_t(std::clamp(std::lround(255.0 / (1.0 + std::exp(-double(scene.opacity[i])))), 0L, 255L));
+    ci[4 * i + 3] = uint8_t(std::clamp(std::lround(255.0 * sigmoid(double(scene.opacity[i]))), 0L, 255L));
   }
   meta["sh0"] = {{"codebook", ccb}, {"files", json::array({"sh0.webp"})}};
   files.push_back({"sh0.webp", encode_webp(ci, w, h)});

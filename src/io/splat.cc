@@ -41,7 +41,7 @@ std::vector<uint8_t> serialize_splat(const GaussianScene& scene, std::vector<std
       if (v < 0 || v > 1) ++clamped_colour;
       r[24 + ch] = to_byte(v * 255.0);
     }
-    r[27] = to_byte(255.0 / (1.0 + std::exp(-double(scene.opacity[i]))));
+    r[27] = to_byte(255.0 * sigmoid(double(scene.opacity[i])));
     const Quat q = scene.rotation(i).normalized();
     const double qv[4] = {q.w, q.x, q.y, q.z};
     for (int a = 0; a < 4; ++a) r[28 + a] = to_byte(qv[a] * 128.0 + 128.0);

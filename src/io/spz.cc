@@ -387,7 +387,7 @@ std::vector<uint8_t> serialize_spz(const GaussianScene& scene, const SpzWriteOpt
       const int32_t v = int32_t(std::lround(double(xyz[c]) * fixed));
       for (int b = 0; b < 3; ++b) a[0][9 * i + 3 * c + b] = uint8_t(uint32_t(v) >> (8 * b));
     }
-    a[1][i] = to_u8(255.0f / (1.0f + std::exp(-scene.opacity[i])));
+    a[1][i] = to_u8(255.0f * sigmoid(scene.opacity[i]));
     const float* c = scene.sh_of(i);
     for (int ch = 0; ch < 3; ++ch) {
       const float v = c[ch] * (kColorScale * 255.0f) + 127.5f;

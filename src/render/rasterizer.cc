@@ -94,7 +94,7 @@ __attribute__((noinline)) bool preprocess_one(const GaussianScene& scene, size_t
                                               const RenderSettings& s, int degree, int grid_x, int grid_y,
                                               Projected& proj) {
   Splat& out = proj.splat;
-  const float opacity = 1.f / (1.f + std::exp(-scene.opacity[i]));
+  const float opacity = sigmoid(scene.opacity[i]);
   if (!(opacity >= kMinAlpha)) return false;  // can never reach alpha 1/255
   const float* p = &scene.positions[3 * i];
   if (cam.R[6] * p[0] + cam.R[7] * p[1] + cam.R[8] * p[2] + cam.t[2] <= s.near_plane) return false;  // cheap cull first

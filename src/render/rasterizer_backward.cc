@@ -42,7 +42,7 @@ struct Projected {
 template <typename Real>
 bool project_gaussian(const GaussianParams<Real>& P, size_t i, const DiffCamera<Real>& cam, Real near_plane, Real blur,
                       int degree, Projected<Real>& o) {
-  o.opacity = Real(1) / (Real(1) + std::exp(-P.opacity[i]));
+  o.opacity = sigmoid(P.opacity[i]);
   if (!(o.opacity >= Real(kMinAlpha))) return false;
   covariance_3d(P.scales + 3 * i, P.rotations + 4 * i, o.cov);
   const Real* p = P.positions + 3 * i;

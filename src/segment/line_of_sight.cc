@@ -27,7 +27,7 @@ double LineOfSight::transmittance(const Vec3& from, const Vec3& to) const {
   if (!(dot(d, d) > 0) || reach_ <= 0) return 1.0;
   double T = 1.0;
   for (uint32_t i : index_.near_segment(from, to, reach_)) {
-    const double opacity = 1.0 / (1.0 + std::exp(-double(scene_.opacity[i])));
+    const double opacity = sigmoid(double(scene_.opacity[i]));
     if (opacity < 1.0 / 255) continue;
     // Inverse covariance R S^-2 R^T, with R's columns the Gaussian's axes.
     double q[4], R[9], qn[4];
