@@ -139,6 +139,7 @@ int run_eval_ablation(const Args& args) {
        }},
       {"- selection not peeled", [](segment::SessionOptions& o) { o.see_through_options.max_selection_peeled = 1.01; }},
       {"- negative clicks only remove", [](segment::SessionOptions& o) { o.negative_only_removes = false; }},
+      {"- negative clicks one by one", [](segment::SessionOptions& o) { o.negatives_one_by_one = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

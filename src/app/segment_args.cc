@@ -115,6 +115,9 @@ const char* const kSegmentOptionsHelp =
     "                                click points at (only cut that region from it)\n"
     "  --negatives-may-add           let a negative click's round select what the selection before it\n"
     "                                did not hold (default: a negative click only takes out)\n"
+    "  --negatives-together          segment a view's negative clicks together, one region for all\n"
+    "                                (default: one region per click, each cut where it does not\n"
+    "                                swallow the mask)\n"
     "  --sam-all-clicks              give a view's positive clicks to SAM together (one answer) instead\n"
     "                                of segmenting each alone and taking the union\n"
     "  --photos                      segment the source photos instead of renders\n"
@@ -132,7 +135,8 @@ const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-see-through-enclosures", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "no-far-behind-check", "keep-whole-islands", "keep-apart-islands", "keep-seen-behind", "keep-behind-click", "keep-behind-pieces", "part-votes-against", "no-attached-parts", "wide-views-vouch", "keep-beyond-part", "no-negative-islands",
                                           "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
-                                          "sam-negatives", "sam-all-clicks", "no-negative-granularity", "negatives-may-add"};
+                                          "sam-negatives", "sam-all-clicks", "no-negative-granularity", "negatives-may-add",
+                                          "negatives-together"};
   return f;
 }
 
@@ -196,6 +200,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.click_by_click = !args.has("sam-all-clicks");
   s.session.negative_granularity = !args.has("no-negative-granularity");
   s.session.negative_only_removes = !args.has("negatives-may-add");
+  s.session.negatives_one_by_one = !args.has("negatives-together");
   s.session.selection_prompt_rounds = args.get_int("selection-prompts", 2);
   if (s.session.selection_prompt_rounds < 0 || s.session.selection_prompt_rounds > 10)
     throw Error("--selection-prompts must be between 0 and 10");

