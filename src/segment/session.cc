@@ -720,7 +720,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
     }
   };
   auto segment_views = [&](const std::vector<size_t>& subset) {
-    std::vector<size_t> which, which_neg, which_each;  // which_neg: a view per negative click
+    std::vector<size_t> which, which_neg, which_each;  // which_neg: a view per negative click to decode,
+    std::vector<size_t> slot_neg;                       // ... and that click's place among the view's regions
     std::vector<std::vector<models::Click>> prompts, prompts_neg, prompts_each;
     std::vector<const std::vector<float>*> previous;
     for (size_t k : subset) {
@@ -779,16 +780,31 @@ RoundReport Session::run_round(State& next, const State& prev) {
         if (!old.sam_negatives.empty() && same_clicks(false)) {
           negatives[k] = old.sam_negatives;
         } else {
-          for (auto& one : inverted) {
+          // One by one, a region depends on its own click and the positive ones: where
+          // those are unchanged (a negative click added after it), last round's stands.
+          std::vector<const Click*> old_neg, new_neg;
+          for (const Click& c : old.clicks)
+            if (c.label == 0) old_neg.push_back(&c);
+          for (const Click& c : vs.clicks)
+            if (c.label == 0) new_neg.push_back(&c);
+          const bool reusable =
+              o.negatives_one_by_one && old.sam_negatives.size() == old_neg.size() && same_clicks(true);
+          negatives[k].assign(inverted.size(), nullptr);
+          for (size_t i = 0; i < inverted.size(); ++i) {
+            if (reusable && i < old_neg.size() && old_neg[i]->x == new_neg[i]->x && old_neg[i]->y == new_neg[i]->y) {
+              negatives[k][i] = old.sam_negatives[i];
+              continue;
+            }
             which_neg.push_back(k);
-            prompts_neg.push_back(std::move(one));
+            slot_neg.push_back(i);
+            prompts_neg.push_back(std::move(inverted[i]));
           }
         }
       }
     }
     decode_views(which, prompts, previous, results);
     const auto regions = decode(which_neg, prompts_neg, {});
-    for (size_t i = 0; i < which_neg.size(); ++i) negatives[which_neg[i]].push_back(regions[i]);
+    for (size_t i = 0; i < which_neg.size(); ++i) negatives[which_neg[i]][slot_neg[i]] = regions[i];
     decode_each_click(which_each, prompts_each);
   };
   // Candidate c, or one without the negative clicks where c groups what they point at with
