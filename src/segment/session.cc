@@ -185,37 +185,36 @@ bool swallows(const Agreement& mask_vs_region) {
 
 using NegativeRegions = std::vector<std::shared_ptr<const models::SegmentResult>>;
 
+// The union of the regions `keep` accepts (all of one view's size); empty when it keeps none.
+template <class Keep>
+Mask union_of(const NegativeRegions& regions, Keep keep) {
+  Mask all;
+  for (const auto& r : regions) {
+    const Mask& region = r->mask();
+    if (!keep(region) || (!all.empty() && region.data.size() != all.data.size())) continue;
+    if (all.empty()) {
+      all = region;
+      continue;
+    }
+    for (size_t i = 0; i < all.data.size(); ++i) all.data[i] |= region.data[i];
+  }
+  return all;
+}
+
 // What the negative clicks' regions cut from mask m: the union of those that do not swallow
 // it, each judged alone. Decoded together, two negative clicks on either side of the object
 // (its neighbours in a row of touching mugs) segment the whole row with it, which swallows
 // the mask and cut nothing. Empty when no region cuts.
 Mask negative_cut(const Mask& m, const NegativeRegions& regions) {
-  Mask cut;
-  for (const auto& r : regions) {
-    const Mask& region = r->mask();
-    if (region.data.size() != m.data.size() || swallows(agreement(m, region))) continue;
-    if (cut.empty()) {
-      cut = region;
-      continue;
-    }
-    for (size_t i = 0; i < cut.data.size(); ++i) cut.data[i] |= region.data[i];
-  }
-  return cut;
+  return union_of(regions, [&](const Mask& region) {
+    return region.data.size() == m.data.size() && !swallows(agreement(m, region));
+  });
 }
 
 // Every negative click's region together (what the part/whole band leaves out, and what
 // negative_free_candidate weighs); empty when there are none.
 Mask negative_union(const NegativeRegions& regions) {
-  Mask all;
-  for (const auto& r : regions) {
-    const Mask& region = r->mask();
-    if (all.empty()) {
-      all = region;
-      continue;
-    }
-    for (size_t i = 0; i < all.data.size() && i < region.data.size(); ++i) all.data[i] |= region.data[i];
-  }
-  return all;
+  return union_of(regions, [](const Mask&) { return true; });
 }
 
 bool holds_a_negative(const Mask& mask, const std::vector<Click>& clicks) {
@@ -534,7 +533,7 @@ void take_candidate(ViewState& vs, const std::shared_ptr<const models::SegmentRe
   vs.mask.resize(m.data.size());
   vs.mask_pixels = 0;
   for (size_t i = 0; i < m.data.size(); ++i) {
-    vs.mask[i] = m.data[i] && !(!cut.empty() && cut.data[i]);
+    vs.mask[i] = m.data[i] && (cut.empty() || !cut.data[i]);
     vs.mask_pixels += vs.mask[i];
   }
   vs.candidate = c;
