@@ -344,7 +344,9 @@ int run_eval_ablation(const Args& args) {
         auto score = [&] {
           return segment::score_selection(s->scene.bundle.gaussians, s->scene.bundle.cameras, truth, session->selection());
         };
-        segment::MaskScore sc = score();
+        // The configuration's row reports the click itself; corrective clicks have rows of their own.
+        const segment::MaskScore first = score();
+        segment::MaskScore sc = first;
         if (corrective > 0) {
           const int view = segment::view_of_camera(*session, t->camera);
           // By value: a click may add a view (see_through.h), which moves the session's views.
@@ -361,7 +363,7 @@ int run_eval_ablation(const Args& args) {
           }
         }
         if (granularity_choice) best_granularity(tc, *session, [&] { return score().iou; });
-        add_click(tc, sc.iou, sc.accuracy, tm.ms_interaction());
+        add_click(tc, first.iou, first.accuracy, tm.ms_interaction());
         if (!overlays.empty() && ci == 0) {  // the first configuration's evidence, per task (and click) and view
           std::string name = s->name + "_" + s->scene.objects[size_t(t->object)].name;
           if (k > 0) name += "_click" + std::to_string(k);
@@ -534,7 +536,8 @@ RegisterCommand reg("ablation", "measure the segmentation's design choices on sy
                     "  positive click on the same object, instead of alone. --corrective-clicks N (eval set):\n"
                     "  after each synthetic task's own click, up to N clicks as a user corrects, at the most\n"
                     "  interior pixel of the larger error in the clicked view (positive where the selection\n"
-                    "  misses the object, negative where it takes something else); rows per click count.\n"
+                    "  misses the object, negative where it takes something else); rows per click count (the\n"
+                    "  configuration's own row stays the first click's; --overlays show the last click's).\n"
                     "  --granularity-choice: after each click, the clicked view's granularity stepped up to\n"
                     "  twice larger and twice smaller (the web app's Larger/Smaller); a row of the best (per\n"
                     "  task, the mean over its clicks).\n"
