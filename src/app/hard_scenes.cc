@@ -1740,7 +1740,7 @@ EvalScene playroom(const EvalSetOptions& opt) {
 // taken, each camera a little off the grid and off its aim), with jittered Gaussians and faint
 // floaters, built as a held-out check by a session that had not seen the method's tuning (one
 // change after a first score, the leaves spread apart so that the books show through them as its
-// brief asked; none after the first run README reports): a monstera whose broad, slit leaves on
+// brief asked; none after the first run docs/evaluation.md reports): a monstera whose broad, slit leaves on
 // long stalks stand 20-30 cm in front of a bookcase full of coloured spines, which show through the
 // gaps between the leaves (the truth is the leaves, stalks and stems, not the pot); a thin wooden
 // coat stand near the frame's left edge, its hooks above the top of most views; a waste-paper bin

@@ -291,7 +291,7 @@ TEST(HardCases, AClickNearAThinPostsEdgeReachesOtherViewsOnThePost) {
   // The porch post's second drawn click lies right of the post's middle: reprojected as it
   // is, it lands on the post's edge in most views, where SAM's masks take in the wall beside
   // the post (and hold the post, so inspection accepts them). From the interior of the
-  // post's mask in the clicked view it lands on the post's middle (an option: README).
+  // post's mask in the clicked view it lands on the post's middle (an option: docs/evaluation.md).
   SessionOptions anchored;
   anchored.interior_anchor.enabled = true;
   const Outcome ours = run("porch/post", anchored, {}, kAblation, 2);
@@ -765,7 +765,7 @@ TEST(HardCases, ALaterClickOnTheRugsFringeDoesNotTurnItIntoTheFloor) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // One click on the rug, a negative click on the floor beside it, then a positive click on
   // the rug's fringe (the clicks a corrective run gave in a build with the negative parting
-  // the README tried; pixels of the clicked view). That last click alone segments the floor
+  // docs/evaluation.md tried; pixels of the clicked view). That last click alone segments the floor
   // (the surroundings), and the joint answer to both positive clicks, the rug, was "a part of
   // what each click segments alone": their union, the floor, became every such view's mask
   // (11.9). Where the joint answer is not the surroundings, such a click no longer counts.

