@@ -35,14 +35,14 @@ async function run(fn) {
   } catch (e) {
     showError(e.message || String(e));
   } finally {
-    poll(true);
+    poll();
   }
 }
 
 async function runJob(what, start, kind) {
   try {
     const { job } = await start();
-    poll(true);
+    poll();
     await api.waitJob(job);
     if (kind === 'undo') { const m = marks.pop(); if (m) redoMarks.push(m); }
     if (kind === 'redo') { const m = redoMarks.pop(); if (m) marks.push(m); }
@@ -52,7 +52,7 @@ async function runJob(what, start, kind) {
     showError(`${what}: ${e.message || e}`);
     return false;
   } finally {
-    poll(true);
+    poll();
   }
 }
 
@@ -98,7 +98,7 @@ function clickWalked(dir, job) {
   if (dir === 'undo') { const m = marks.pop(); if (m) redoMarks.push(m); }
   else { const m = redoMarks.pop(); if (m) marks.push(m); }
   showMarks();
-  if (job) api.waitJob(job).catch((e) => showError(`${dir} click: ${e.message || e}`)).finally(() => poll(true));
+  if (job) api.waitJob(job).catch((e) => showError(`${dir} click: ${e.message || e}`)).finally(() => poll());
 }
 
 function setBanner(kind, text, progress) {
@@ -178,9 +178,10 @@ function render(s) {
 
 // Polls overlap (a timed one still in flight when an action asks for one now), and their
 // answers can arrive out of order: an answer older than the one shown would put the page
-// back to before the action, so it is dropped.
+// back to before the action, so it is dropped. Only the latest poll sent schedules the
+// next one, so overlapping polls never leave two timers running.
 let pollsSent = 0, pollShown = 0;
-async function poll(now = false) {
+async function poll() {
   clearTimeout(pollTimer);
   const sent = ++pollsSent;
   try {
@@ -194,7 +195,7 @@ async function poll(now = false) {
     $('status-pill').textContent = `server unreachable: ${e.message}`;
     $('status-pill').className = 'pill err';
   }
-  pollTimer = setTimeout(poll, status && status.busy ? 300 : 1200);
+  if (sent === pollsSent) pollTimer = setTimeout(poll, status && status.busy ? 300 : 1200);
 }
 
 function populateCameras() {
