@@ -1,7 +1,8 @@
 // Issue 11 on the command line (items 1-3, 11-13): the `isegman` binary run on a small
 // scene with hostile camera names, outputs aimed at its inputs and out-of-range values.
 // Each case checks the exit status, the message, and that nothing was written or replaced.
-// And that a selection file names the Gaussians as the scene's file orders them.
+// And that a selection file names the Gaussians as the scene's file orders them, and that
+// the ablation's rows say what they are named for.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -280,6 +281,31 @@ TEST(CliSafety, OutOfRangeValuesAreRefusedByName) {
   }
   EXPECT_FALSE(fs::exists(root + "/o"));
   EXPECT_FALSE(fs::exists(root + "/s.ply"));
+}
+
+// The mean IoU of the ablation's row whose first cell starts with `label`, or -1.
+double row_mean(const std::string& output, const std::string& label) {
+  const size_t at = output.find("| " + label);
+  if (at == std::string::npos) return -1;
+  const size_t bar = output.find('|', at + 2);
+  return bar == std::string::npos ? -1 : std::atof(output.c_str() + bar + 1);
+}
+
+// With corrective clicks the configuration's own row scores the task's first click, and the
+// rows per click count what came after: the rocking horse's second click (positive, on the
+// rump its first selection missed) changes its figure, so the two rows differ.
+TEST(CliAblation, TheConfigurationsRowScoresTheFirstClickWhenCorrectiveClicksFollow) {
+  const std::string cache = (fs::temp_directory_path() / "isegman-test-embeddings").string();
+  const CliRun r = isegman("ablation --configs 0 --fixture-tasks none --only playroom/rocking_horse "
+                           "--corrective-clicks 1 --cache " + q(cache));
+  if (r.output.find("SAM model files missing") != std::string::npos) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  ASSERT_EQ(r.status, 0) << r.output;
+  const double row = row_mean(r.output, "all additions (default)"), one = row_mean(r.output, "... after 1 click"),
+               two = row_mean(r.output, "... after 2 clicks");
+  std::printf("the configuration's row %.2f, after 1 click %.2f, after 2 clicks %.2f\n", row, one, two);
+  ASSERT_GT(one, 0) << r.output;
+  EXPECT_EQ(row, one);
+  EXPECT_NE(two, one) << "the second click no longer changes the task: pick another task for this test";
 }
 
 }  // namespace
