@@ -292,8 +292,8 @@ double row_mean(const std::string& output, const std::string& label) {
 }
 
 // With corrective clicks the configuration's own row scores the task's first click, and the
-// rows per click count what came after: the rocking horse's second click (positive, on the
-// rump its first selection missed) changes its figure, so the two rows differ.
+// rows per click count what came after: the rocking horse's second click (positive, where
+// its first selection missed the horse) changes its figure, so the two rows differ.
 TEST(CliAblation, TheConfigurationsRowScoresTheFirstClickWhenCorrectiveClicksFollow) {
   const std::string cache = (fs::temp_directory_path() / "isegman-test-embeddings").string();
   const CliRun r = isegman("ablation --configs 0 --fixture-tasks none --only playroom/rocking_horse "
