@@ -440,20 +440,89 @@ void candidates_before_selection(const std::vector<std::string>& taps, const Axi
 
 // ---------------------------------------------------------------- model
 
+namespace {
+
+// A decode's answer kept for its prompt, its masks packed eight pixels a byte.
+struct RememberedAnswer {
+  std::vector<Click> clicks;
+  SegmentResult result;  // candidates left empty: they are `packed`
+  int width = 0, height = 0;
+  std::vector<std::vector<uint8_t>> packed;
+
+  size_t bytes() const {
+    size_t b = sizeof(*this) + clicks.size() * sizeof(Click);
+    for (const auto& p : packed) b += p.capacity();
+    for (const auto& l : result.candidate_low_res) b += l.capacity() * sizeof(float);
+    return b;
+  }
+};
+
+bool same_prompt(const std::vector<Click>& a, const std::vector<Click>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (a[i].x != b[i].x || a[i].y != b[i].y || a[i].label != b[i].label) return false;
+  return true;
+}
+
+RememberedAnswer remember(const std::vector<Click>& clicks, const SegmentResult& r) {
+  RememberedAnswer a;
+  a.clicks = clicks;
+  a.result.score = r.score;
+  a.result.low_res_size = r.low_res_size;
+  a.result.mask_index = r.mask_index;
+  a.result.candidate_scores = r.candidate_scores;
+  a.result.candidate_low_res = r.candidate_low_res;
+  if (!r.candidates.empty()) {
+    a.width = r.candidates[0].width;
+    a.height = r.candidates[0].height;
+  }
+  for (const Mask& m : r.candidates) {
+    std::vector<uint8_t> bits((m.data.size() + 7) / 8, 0);
+    for (size_t i = 0; i < m.data.size(); ++i)
+      if (m.data[i]) bits[i >> 3] = uint8_t(bits[i >> 3] | (1u << (i & 7)));
+    a.packed.push_back(std::move(bits));
+  }
+  return a;
+}
+
+SegmentResult recall(const RememberedAnswer& a) {
+  SegmentResult r = a.result;
+  for (const auto& bits : a.packed) {
+    Mask m(a.width, a.height);
+    for (size_t i = 0; i < m.data.size(); ++i) m.data[i] = uint8_t((bits[i >> 3] >> (i & 7)) & 1u);
+    r.candidates.push_back(std::move(m));
+  }
+  return r;
+}
+
+}  // namespace
+
 // The decoder's values that depend on the embedding alone (no previous mask): made by the
 // first such decode, for the decoder that made them and the features they came from.
+// With them, the answers to the last few one-click prompts: a session decodes each click
+// alone again in every later round (segment/session.h, click_by_click), and a decode
+// without a previous mask depends on the embedding and the prompt alone.
 struct DecoderValues {
+  static constexpr size_t kRemembered = 3;
   std::mutex mu;
   uint64_t decoder = 0;  // OnnxGraph::id()
   std::weak_ptr<std::vector<uint8_t>> features;
   std::shared_ptr<const OnnxGraph::Stable> stable;
+  std::vector<RememberedAnswer> answers;  // most recent first
+
+  // Whether what is kept came from this decoder and these features (the caller holds mu).
+  bool made_by(uint64_t dec, const std::shared_ptr<std::vector<uint8_t>>& f) const {
+    return stable && decoder == dec && features.lock() == f;
+  }
 };
 std::shared_ptr<DecoderValues> new_decoder_values() { return std::make_shared<DecoderValues>(); }
 
 size_t SamModel::decoder_values_bytes(const SamEmbedding& e) {
   if (!e.decoder_values) return 0;
   std::lock_guard<std::mutex> lock(e.decoder_values->mu);
-  return e.decoder_values->stable ? OnnxGraph::stable_bytes(*e.decoder_values->stable) : 0;
+  size_t bytes = e.decoder_values->stable ? OnnxGraph::stable_bytes(*e.decoder_values->stable) : 0;
+  for (const RememberedAnswer& a : e.decoder_values->answers) bytes += a.bytes();
+  return bytes;
 }
 
 struct SamModel::Impl {
@@ -574,6 +643,7 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
     throw Error("SAM: the embedding was made by encoder " + emb.model_id + ", this model is " + impl_->model_id);
   if (clicks.empty()) throw Error("SAM: at least one click is needed");
   double t0 = now_ms();
+  if (timings) timings->answer_kept = false;
   const OnnxGraph& dec = *impl_->decoder;
   auto info = [&](const std::string& name) -> const ValueInfo& {
     for (const auto& v : dec.inputs())
@@ -623,6 +693,23 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
   feeds["point_coords"] = make_input(info("point_coords"), {1, n, 2}, coords);
   feeds["point_labels"] = make_input(info("point_labels"), {1, n}, labels);
   std::map<std::string, HostTensor> outs;
+  // One click without a previous mask: its answer may be kept from an earlier decode.
+  const bool rememberable = !has_mask && emb.decoder_values && clicks.size() == 1;
+  if (rememberable) {
+    DecoderValues& kept = *emb.decoder_values;
+    std::lock_guard<std::mutex> lock(kept.mu);
+    if (kept.made_by(dec.id(), emb.features.bytes))
+      for (size_t i = 0; i < kept.answers.size(); ++i) {
+        if (!same_prompt(kept.answers[i].clicks, clicks)) continue;
+        std::rotate(kept.answers.begin(), kept.answers.begin() + long(i), kept.answers.begin() + long(i) + 1);
+        SegmentResult r = recall(kept.answers[0]);
+        if (timings) {
+          timings->decoder_ms = now_ms() - t0;
+          timings->answer_kept = true;
+        }
+        return r;
+      }
+  }
   if (has_mask || !emb.decoder_values) {
     feeds.insert(per_image.begin(), per_image.end());
     outs = dec.run(feeds);
@@ -631,7 +718,7 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
     std::shared_ptr<const OnnxGraph::Stable> stable;
     {
       std::lock_guard<std::mutex> lock(kept.mu);
-      if (kept.stable && kept.decoder == dec.id() && kept.features.lock() == emb.features.bytes) stable = kept.stable;
+      if (kept.made_by(dec.id(), emb.features.bytes)) stable = kept.stable;
     }
     if (stable) {
       outs = dec.run(feeds, *stable);
@@ -644,6 +731,7 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
       kept.stable = stable;
       kept.decoder = dec.id();
       kept.features = emb.features.bytes;
+      kept.answers.clear();  // another decoder's or other features' answers
     }
   }
   const HostTensor& ious = output(outs, dec, "iou_predictions", 1);
@@ -689,6 +777,15 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
     r.candidate_low_res.emplace_back(lowf.begin() + c * plane, lowf.begin() + (c + 1) * plane);
   }
   if (k == 1 && impl_->taps.size() == 2) candidates_before_selection(impl_->taps, tx, ty, outs, n, r);
+  if (rememberable) {
+    RememberedAnswer answer = remember(clicks, r);
+    DecoderValues& kept = *emb.decoder_values;
+    std::lock_guard<std::mutex> lock(kept.mu);
+    if (kept.made_by(dec.id(), emb.features.bytes)) {
+      kept.answers.insert(kept.answers.begin(), std::move(answer));
+      if (kept.answers.size() > DecoderValues::kRemembered) kept.answers.resize(DecoderValues::kRemembered);
+    }
+  }
   if (timings) timings->decoder_ms = now_ms() - t0;
   return r;
 }

@@ -63,7 +63,8 @@ std::string sam_image_key(const Image& rgb);
 
 struct SamTimings {
   double preprocess_ms = 0, encoder_ms = 0, decoder_ms = 0;
-  bool from_cache = false;
+  bool from_cache = false;   // encode: the embedding came from the disk cache
+  bool answer_kept = false;  // decode: the answer was kept from an earlier decode of the same prompt
 };
 
 // Encoder + decoder, stateless apart from the loaded graphs; thread-compatible.
@@ -86,6 +87,8 @@ class SamModel {
   // Runs the prompt decoder. Clicks in continuous pixel coordinates (core/click.h); at
   // least one click.
   // previous_low_res: low_res_logits of an earlier result on the same embedding.
+  // The answers to the last few one-click prompts without a previous mask are kept with the
+  // embedding (its decoder values) and given again for the same click, bit for bit.
   SegmentResult decode(const SamEmbedding& embedding, const std::vector<Click>& clicks,
                        const std::vector<float>* previous_low_res = nullptr, SamTimings* timings = nullptr) const;
   // A low-res mask (SegmentResult::low_res_logits) as a 0/1 mask over the embedded image,

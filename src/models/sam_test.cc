@@ -381,3 +381,72 @@ TEST(SamModel, DecoderValuesKeptWithTheEmbeddingChangeNoResult) {
   EXPECT_EQ(second.decode(kept, prompts[1]).candidate_low_res, model->decode(whole, prompts[1]).candidate_low_res);
   EXPECT_EQ(model->decode(kept, prompts[1]).candidate_low_res, model->decode(whole, prompts[1]).candidate_low_res);
 }
+
+// The answer to a one-click prompt without a previous mask is kept with the embedding (a
+// session decodes each click alone again in every later round): the same click gets it
+// back bit for bit; other prompts, a previous mask, other features or a click pushed out
+// by three newer ones run the decoder.
+TEST(SamModel, AOneClickAnswerIsKeptWithTheEmbedding) {
+  REQUIRE_MODELS();
+  auto model = shared_model();
+  Image img(160, 120, 3);
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 160; ++x) {
+      const bool disc = (x - 60) * (x - 60) + (y - 55) * (y - 55) < 900;
+      img.at(x, y, 0) = disc ? 0.9f : 0.25f;
+      img.at(x, y, 1) = disc ? 0.8f : 0.35f + y / 500.f;
+      img.at(x, y, 2) = disc ? 0.1f : 0.5f;
+    }
+  SamEmbedding kept = model->encode(img);
+  SamEmbedding whole = kept;
+  whole.decoder_values = nullptr;  // nothing kept: every decode runs the graph
+  auto same = [](const SegmentResult& a, const SegmentResult& b) {
+    EXPECT_EQ(a.mask_index, b.mask_index);
+    EXPECT_EQ(a.score, b.score);
+    EXPECT_EQ(a.candidate_scores, b.candidate_scores);
+    EXPECT_EQ(a.candidate_low_res, b.candidate_low_res);
+    ASSERT_EQ(a.candidates.size(), b.candidates.size());
+    for (size_t c = 0; c < a.candidates.size(); ++c) {
+      EXPECT_EQ(a.candidates[c].width, b.candidates[c].width);
+      EXPECT_EQ(a.candidates[c].data, b.candidates[c].data);
+    }
+  };
+  const std::vector<Click> disc = {{60.5, 55.5, 1}};
+  SamTimings t;
+  const SegmentResult first = model->decode(kept, disc, nullptr, &t);
+  EXPECT_FALSE(t.answer_kept);
+  const size_t bytes_one = SamModel::decoder_values_bytes(kept);
+  const SegmentResult again = model->decode(kept, disc, nullptr, &t);
+  EXPECT_TRUE(t.answer_kept);
+  const SegmentResult graph = model->decode(whole, disc);
+  same(first, graph);
+  same(again, graph);
+  std::printf("a kept answer: %zu candidates, %zu bytes with the decoder values\n", again.candidates.size(), bytes_one);
+  // A previous mask and a two-click prompt run the decoder, and are not kept.
+  const std::vector<float>& low = first.low_res_logits();
+  model->decode(kept, disc, &low, &t);
+  EXPECT_FALSE(t.answer_kept);
+  const std::vector<Click> two = {{60.5, 55.5, 1}, {140.5, 100.5, 0}};
+  same(model->decode(kept, two, nullptr, &t), model->decode(whole, two));
+  EXPECT_FALSE(t.answer_kept);
+  model->decode(kept, two, nullptr, &t);
+  EXPECT_FALSE(t.answer_kept);
+  EXPECT_EQ(SamModel::decoder_values_bytes(kept), bytes_one);
+  // Another pixel is another prompt; three newer clicks push the first one out.
+  for (double x : {20.5, 100.5, 140.5}) {
+    same(model->decode(kept, {{x, 20.5, 1}}, nullptr, &t), model->decode(whole, {{x, 20.5, 1}}));
+    EXPECT_FALSE(t.answer_kept);
+  }
+  model->decode(kept, {{140.5, 20.5, 1}}, nullptr, &t);
+  EXPECT_TRUE(t.answer_kept);
+  same(model->decode(kept, disc, nullptr, &t), graph);
+  EXPECT_FALSE(t.answer_kept);
+  // The same embedding object with other features does not give this image's answer.
+  SamEmbedding other = model->encode(Image(160, 120, 3, 0.5f));
+  SamEmbedding swapped = kept;
+  swapped.features = other.features;
+  SamEmbedding other_whole = other;
+  other_whole.decoder_values = nullptr;
+  same(model->decode(swapped, disc, nullptr, &t), model->decode(other_whole, disc));
+  EXPECT_FALSE(t.answer_kept);
+}
