@@ -60,15 +60,6 @@ std::shared_ptr<const models::SamModel> sam_or_skip(benchmark::State& state) {
   return std::make_shared<const models::SamModel>((dir / "encoder.onnx").string(), (dir / "sam.onnx").string(), 0);
 }
 
-// The click moved by a thousandth of a pixel more at every call: SAM keeps its answers to
-// the last clicks it was given on a view (models/sam.h), and a timed click that repeats an
-// earlier one would time those kept answers, not the click a user makes at a new pixel.
-Click fresh_click(const Click& c) {
-  static int calls = 0;
-  ++calls;
-  return {c.x + 1e-3 * calls, c.y, c.label};
-}
-
 struct Fixture {
   DemoScene demo;
   std::shared_ptr<const models::SamModel> sam;
@@ -125,7 +116,12 @@ void BM_Interaction(benchmark::State& state) {
   f->session->set_options(so);
   segment::RoundReport last;
   for (auto _ : state) {
-    last = f->session->click(f->view, fresh_click(f->click));
+    // SAM keeps its answers to the last clicks on each view (models/sam.h): a timed click
+    // that repeats an earlier one would time those, not a click at a new pixel.
+    state.PauseTiming();
+    f->sam->forget_answers();
+    state.ResumeTiming();
+    last = f->session->click(f->view, f->click);
     state.PauseTiming();
     f->session->undo();
     state.ResumeTiming();
@@ -170,9 +166,10 @@ void BM_NegativeClick(benchmark::State& state) {
   size_t before = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    before = f->session->click(f->view, fresh_click(f->click)).selected;
+    f->sam->forget_answers();  // (the positive click's own answers, kept now, are the user's)
+    before = f->session->click(f->view, f->click).selected;
     state.ResumeTiming();
-    last = f->session->click(f->view, fresh_click(negative));
+    last = f->session->click(f->view, negative);
     state.PauseTiming();
     f->session->undo();
     f->session->undo();
@@ -200,6 +197,7 @@ void real_click(benchmark::State& state, const std::string& name, double x, doub
   }
   static SceneBundle bundle;
   static std::map<std::string, std::unique_ptr<segment::Session>> sessions;
+  static std::shared_ptr<const models::SamModel> sam;
   if (bundle.gaussians.size() == 0) bundle = load_scene(scene.string());
   const Camera* cam = find_camera(bundle.cameras, "image010");
   if (!cam) {
@@ -210,21 +208,26 @@ void real_click(benchmark::State& state, const std::string& name, double x, doub
   std::unique_ptr<segment::Session>& session = sessions[name];
   const Click click = pixel_centre_click(x, y, 1);
   if (!session) {
-    auto sam = sam_or_skip(state);
+    if (!sam) sam = sam_or_skip(state);
     if (!sam) return;
     segment::ViewOptions vo;
     vo.cache_dir = (fs::temp_directory_path() / "isegman-bench-embeddings").string();
     fs::create_directories(vo.cache_dir);
     session = segment::segment_from_prompts(bundle, camera, {click}, sam, so, vo, "auto");
     session->undo();
-    for (const Click& c : before) session->click(segment::view_of_camera(*session, camera), c);
   }
   const int view = segment::view_of_camera(*session, camera);
   segment::RoundReport last;
   for (auto _ : state) {
-    last = session->click(view, fresh_click(click));
+    // A click at a new pixel: no answers kept from earlier iterations (models/sam.h), and
+    // the clicks before it given again, so that theirs are kept as a user's would be.
     state.PauseTiming();
-    session->undo();
+    sam->forget_answers();
+    for (const Click& c : before) session->click(view, c);
+    state.ResumeTiming();
+    last = session->click(view, click);
+    state.PauseTiming();
+    for (size_t k = 0; k <= before.size(); ++k) session->undo();
     state.ResumeTiming();
   }
   state.counters["gaussians"] = double(bundle.gaussians.size());
@@ -404,8 +407,11 @@ void large_scene(benchmark::State& state, int max_side) {
   uint64_t hash = 0;
   double precision = 0, recall = 0;
   for (auto _ : state) {
+    state.PauseTiming();
+    sam->forget_answers();  // a click at a new pixel (models/sam.h)
+    state.ResumeTiming();
     auto tc = clock::now();
-    last = session->click(view, fresh_click(view_click));
+    last = session->click(view, view_click);
     ms_clicks += ms_since(tc);
     ++n;
     state.PauseTiming();

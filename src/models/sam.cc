@@ -444,6 +444,7 @@ namespace {
 
 // A decode's answer kept for its prompt, its masks packed eight pixels a byte.
 struct RememberedAnswer {
+  uint64_t generation = 0;  // SamModel::forget_answers has not been called since
   std::vector<Click> clicks;
   SegmentResult result;  // candidates left empty: they are `packed`
   int width = 0, height = 0;
@@ -531,7 +532,10 @@ struct SamModel::Impl {
   int input_size = 1024;
   std::vector<std::string> taps;  // a single-mask decoder's candidates and their predictions
   bool upsample_here = false;     // masks made from the tapped low-res candidates, not by the graph
+  std::atomic<uint64_t> answers_generation{0};  // answers kept before the last forget_answers() are not given
 };
+
+void SamModel::forget_answers() const { ++impl_->answers_generation; }
 
 SamModel::SamModel(const std::string& encoder_onnx, const std::string& decoder_onnx, int threads)
     : impl_(std::make_unique<Impl>()) {
@@ -695,12 +699,13 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
   std::map<std::string, HostTensor> outs;
   // One click without a previous mask: its answer may be kept from an earlier decode.
   const bool rememberable = !has_mask && emb.decoder_values && clicks.size() == 1;
+  const uint64_t generation = impl_->answers_generation.load();
   if (rememberable) {
     DecoderValues& kept = *emb.decoder_values;
     std::lock_guard<std::mutex> lock(kept.mu);
     if (kept.made_by(dec.id(), emb.features.bytes))
       for (size_t i = 0; i < kept.answers.size(); ++i) {
-        if (!same_prompt(kept.answers[i].clicks, clicks)) continue;
+        if (kept.answers[i].generation != generation || !same_prompt(kept.answers[i].clicks, clicks)) continue;
         std::rotate(kept.answers.begin(), kept.answers.begin() + long(i), kept.answers.begin() + long(i) + 1);
         SegmentResult r = recall(kept.answers[0]);
         if (timings) {
@@ -779,6 +784,7 @@ SegmentResult SamModel::decode(const SamEmbedding& emb, const std::vector<Click>
   if (k == 1 && impl_->taps.size() == 2) candidates_before_selection(impl_->taps, tx, ty, outs, n, r);
   if (rememberable) {
     RememberedAnswer answer = remember(clicks, r);
+    answer.generation = generation;
     DecoderValues& kept = *emb.decoder_values;
     std::lock_guard<std::mutex> lock(kept.mu);
     if (kept.made_by(dec.id(), emb.features.bytes)) {

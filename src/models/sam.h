@@ -97,6 +97,9 @@ class SamModel {
   Mask mask_from_low_res(const SamEmbedding& embedding, const std::vector<float>& low_res_logits) const;
   // Bytes the decoder's values kept with `embedding` hold (0 before its first decode).
   static size_t decoder_values_bytes(const SamEmbedding& embedding);
+  // Answers kept with any embedding before this call are not given again (a benchmark
+  // times a click as a user makes it at a new pixel).
+  void forget_answers() const;
 
  private:
   struct Impl;

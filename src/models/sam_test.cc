@@ -441,6 +441,12 @@ TEST(SamModel, AOneClickAnswerIsKeptWithTheEmbedding) {
   EXPECT_TRUE(t.answer_kept);
   same(model->decode(kept, disc, nullptr, &t), graph);
   EXPECT_FALSE(t.answer_kept);
+  // After forget_answers a kept answer is not given again.
+  model->decode(kept, {{140.5, 20.5, 1}}, nullptr, &t);
+  EXPECT_TRUE(t.answer_kept);
+  model->forget_answers();
+  same(model->decode(kept, {{140.5, 20.5, 1}}, nullptr, &t), model->decode(whole, {{140.5, 20.5, 1}}));
+  EXPECT_FALSE(t.answer_kept);
   // The same embedding object with other features does not give this image's answer.
   SamEmbedding other = model->encode(Image(160, 120, 3, 0.5f));
   SamEmbedding swapped = kept;
