@@ -67,7 +67,8 @@ struct SamTimings {
   bool answer_kept = false;  // decode: the answer was kept from an earlier decode of the same prompt
 };
 
-// Encoder + decoder, stateless apart from the loaded graphs; thread-compatible.
+// Encoder + decoder, stateless apart from the loaded graphs (and the count forget_answers
+// advances); thread-compatible.
 class SamModel {
  public:
   // threads: libtorch intra-op threads (0 = all cores).
