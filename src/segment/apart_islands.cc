@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "core/zeroed_array.h"
+#include "segment/link_grid.h"
 
 namespace isegman::segment {
 
@@ -17,109 +18,6 @@ constexpr size_t kMaxClickedViews = 8;
 constexpr int64_t kMaxBroadCells = 512;
 
 enum Flood : uint8_t { kUnvisited = 0, kJoined = 1, kSettled = 2, kLeaving = 3 };
-
-// The touch rule of TouchingGaussians (whole_islands.h) among `members` alone: a flood's
-// neighbour search reads the members near it, not every centre of the scene there (the wall
-// behind the object), which took 15-20 us a search. The members are counted into a dense grid
-// of cells two link reaches wide over their bounding box, a row of cells along x in order of
-// x, with each centre and largest scale kept beside it: a search reads one contiguous run a
-// row its reach crosses, from the first centre within reach in x to the last. (A hash lookup
-// a cell and a centre and an exp gathered from the scene per candidate took 2.4 us a search
-// at 6M Gaussians.)
-class LinkGrid {
- public:
-  LinkGrid(const GaussianScene& scene, const std::vector<uint32_t>& members, double link_sigmas)
-      : scene_(scene), link_(link_sigmas) {
-    if (members.empty()) return;
-    std::vector<float> scales;
-    scales.reserve(members.size());
-    for (uint32_t g : members) scales.push_back(scene.largest_scale(g));
-    {
-      std::vector<float> reordered = scales;  // touch_reach reorders what it is given
-      reach_ = touch_reach(reordered);
-    }
-    span_cell_ = std::max(2 * link_ * reach_, 1e-9);
-    // Coarser cells where the box would hold more of them than a few per member (members
-    // scattered far apart): the cell size changes what a search reads, never what it finds.
-    cell_ = span_cell_;
-    Vec3 lo = scene.position(members[0]), hi = lo;
-    for (uint32_t g : members) {
-      const Vec3 p = scene.position(g);
-      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    }
-    auto extent = [&](double a, double b) { return std::floor(b / cell_) - std::floor(a / cell_) + 1; };
-    while (extent(lo.x, hi.x) * extent(lo.y, hi.y) * extent(lo.z, hi.z) > 4.0 * double(members.size()) + 1024)
-      cell_ *= 2;
-    x0_ = cell_of(lo.x), y0_ = cell_of(lo.y), z0_ = cell_of(lo.z);
-    nx_ = cell_of(hi.x) - x0_ + 1, ny_ = cell_of(hi.y) - y0_ + 1, nz_ = cell_of(hi.z) - z0_ + 1;
-    start_.assign(size_t(nx_ * ny_ * nz_) + 1, 0);
-    std::vector<uint32_t> cell_at(members.size());
-    for (size_t i = 0; i < members.size(); ++i) {
-      const Vec3 p = scene.position(members[i]);
-      cell_at[i] = uint32_t(((cell_of(p.z) - z0_) * ny_ + (cell_of(p.y) - y0_)) * nx_ + (cell_of(p.x) - x0_));
-      ++start_[cell_at[i] + 1];
-    }
-    for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-    sorted_.resize(members.size());
-    std::vector<uint32_t> next(start_.begin(), start_.end() - 1);
-    for (size_t i = 0; i < members.size(); ++i) {
-      const uint32_t g = members[i];
-      sorted_[next[cell_at[i]]++] = {scene.positions[3 * size_t(g)], scene.positions[3 * size_t(g) + 1],
-                                     scene.positions[3 * size_t(g) + 2], scales[i], g};
-    }
-    // In order of x along each row (a cell's members stay together: x orders the cells too).
-    for (size_t row = 0; row + 1 < start_.size(); row += size_t(nx_))
-      std::sort(sorted_.begin() + start_[row], sorted_.begin() + start_[row + size_t(nx_)],
-                [](const Member& a, const Member& b) { return a.x < b.x; });
-  }
-  // f(j) for every member j != g that touches g (g need not be a member). False, calling
-  // nothing, when g reaches over more than max_cells cells two link reaches wide (a Gaussian
-  // far broader than the members: its search would read a large part of them).
-  template <class F>
-  bool for_each(uint32_t g, F&& f, int64_t max_cells = INT64_MAX) const {
-    if (sorted_.empty()) return true;
-    const double sg = scene_.largest_scale(g), r = link_ * (sg + reach_);
-    const Vec3 p = scene_.position(g);
-    const int64_t span = int64_t(std::floor((p.x + r) / span_cell_)) - int64_t(std::floor((p.x - r) / span_cell_)) + 1;
-    if (span > max_cells || span * span > max_cells / span) return false;
-    const int64_t xa = std::max<int64_t>(cell_of(p.x - r) - x0_, 0), xb = std::min(cell_of(p.x + r) - x0_, nx_ - 1);
-    const int64_t ya = std::max<int64_t>(cell_of(p.y - r) - y0_, 0), yb = std::min(cell_of(p.y + r) - y0_, ny_ - 1);
-    const int64_t za = std::max<int64_t>(cell_of(p.z - r) - z0_, 0), zb = std::min(cell_of(p.z + r) - z0_, nz_ - 1);
-    if (xa > xb) return true;
-    // Past r in x by a margin: the distance test below decides, as for every other candidate.
-    const float x_lo = float(p.x - r * (1 + 1e-5)), x_hi = float(p.x + r * (1 + 1e-5));
-    const double r2 = r * r;
-    for (int64_t z = za; z <= zb; ++z)
-      for (int64_t y = ya; y <= yb; ++y) {
-        const size_t row = size_t((z * ny_ + y) * nx_);
-        uint32_t i = start_[row + size_t(xa)];
-        const uint32_t end = start_[row + size_t(xb) + 1];
-        while (i < end && sorted_[i].x < x_lo) ++i;
-        for (; i < end && sorted_[i].x <= x_hi; ++i) {
-          const Member& m = sorted_[i];
-          if (m.g == g) continue;
-          const double dx = double(m.x) - p.x, dy = double(m.y) - p.y, dz = double(m.z) - p.z;
-          const double d2 = dx * dx + dy * dy + dz * dz;
-          const double l = link_ * (sg + double(m.scale));
-          if (d2 <= r2 && d2 <= l * l) f(m.g);
-        }
-      }
-    return true;
-  }
-
- private:
-  int64_t cell_of(double v) const { return int64_t(std::floor(v / cell_)); }
-  struct Member {
-    float x, y, z, scale;
-    uint32_t g;
-  };
-  const GaussianScene& scene_;
-  double link_, reach_ = 0, span_cell_ = 1, cell_ = 1;
-  int64_t x0_ = 0, y0_ = 0, z0_ = 0, nx_ = 0, ny_ = 0, nz_ = 0;
-  std::vector<uint32_t> start_;  // the members of cell c: sorted_[start_[c], start_[c + 1])
-  std::vector<Member> sorted_;
-};
 
 // Marks bit `bit` in `behind` for every Gaussian of `seen` (selected, seen in the view; its
 // centre at (u, v), depth z) that selected Gaussians nearer by the gap flank on both sides;
