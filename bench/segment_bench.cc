@@ -16,6 +16,9 @@
 // `--benchmark_filter=LargeScene/6000000` runs one size.
 // BM_RealClick: a click on the real fern fixture's plant (20 views, cached embeddings);
 // BM_RealSecondClick: a second positive click on it.
+// BM_LinkGridFlood: the touch rule's grid (segment/link_grid.h) as the apart-island floods use
+// it: a flood over 1M Gaussians on a sphere's shell (a trained object's surface, put in space
+// order), every member searched once; the grid's build reported apart.
 // BM_VotePass: the tile passes a click runs a few times per view, alone, on one compacted
 // view of the large scene (1000x660): a mask's sums, the same with the selection's
 // coverage at the mask's pixels, and the selection's coverage over its tiles.
@@ -41,6 +44,7 @@
 #include "io/ply.h"
 #include "io/scene_loader.h"
 #include "render/visibility.h"
+#include "segment/link_grid.h"
 #include "segment/packed_votes.h"
 #include "segment/pipeline.h"
 
@@ -472,6 +476,56 @@ BENCHMARK_CAPTURE(BM_LargeSceneAtMaxSide, 640, 640)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(2);
+
+void BM_LinkGridFlood(benchmark::State& state) {
+  const size_t n = size_t(state.range(0));
+  GaussianScene scene;
+  uint64_t x = 99;
+  auto uniform = [&]() {
+    x = x * 6364136223846793005ull + 1442695040888963407ull;
+    return double(x >> 11) / double(uint64_t(1) << 53);
+  };
+  for (size_t i = 0; i < n; ++i) {
+    const double z = 2 * uniform() - 1, a = 2 * M_PI * uniform(), ring = std::sqrt(1 - z * z);
+    const double radius = 1 + 0.01 * uniform(), scale = std::exp(std::log(0.001) + uniform() * std::log(10.0));
+    scene.positions.insert(scene.positions.end(), {float(radius * ring * std::cos(a)), float(radius * ring * std::sin(a)),
+                                                   float(radius * z)});
+    scene.scales.insert(scene.scales.end(), {float(std::log(scale)), float(std::log(scale * 0.7)), float(std::log(scale * 0.1))});
+    scene.rotations.insert(scene.rotations.end(), {1, 0, 0, 0});
+    scene.opacity.push_back(0);
+  }
+  scene.sh.assign(3 * n, 0.5f);
+  put_in_space_order(scene);  // as `segment` does
+  std::vector<uint32_t> members(n);
+  for (size_t i = 0; i < n; ++i) members[i] = uint32_t(i);
+  double build_ms = 0;
+  size_t touching = 0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const segment::LinkGrid grid(scene, members, 1.0);
+    build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    std::vector<uint8_t> reached(n, 0);
+    std::vector<uint32_t> queue;
+    touching = 0;
+    for (size_t seed = 0; seed < n; ++seed) {  // every set, as the floods would meet them
+      if (reached[seed]) continue;
+      reached[seed] = 1;
+      queue.assign(1, uint32_t(seed));
+      for (size_t head = 0; head < queue.size(); ++head)
+        grid.for_each(queue[head], [&](uint32_t j) {
+          ++touching;
+          if (reached[j]) return;
+          reached[j] = 1;
+          queue.push_back(j);
+        });
+    }
+    benchmark::DoNotOptimize(queue.data());
+  }
+  state.counters["build_ms"] = build_ms;
+  state.counters["touching_per_search"] = double(touching) / double(n);
+  state.counters["searches"] = double(n);
+}
+BENCHMARK(BM_LinkGridFlood)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 // What packing a view's all-pixel votes costs a round: unpacking one view's list into the
 // list the round reuses. 2.6M entries is a view of the 6M-Gaussian scene above (index gaps

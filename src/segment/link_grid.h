@@ -40,25 +40,36 @@ class LinkGrid {
     // Past r in x by a margin: the distance test below decides, as for every other candidate.
     const float x_lo = float(p.x - r * (1 + 1e-5)), x_hi = float(p.x + r * (1 + 1e-5));
     const double r2 = r * r;
+    // The touching candidates of a row are gathered without a branch on the test (which goes
+    // either way unpredictably), then handed to f.
+    uint32_t found[kFoundBatch];
     for (int64_t z = za; z <= zb; ++z)
       for (int64_t y = ya; y <= yb; ++y) {
         const size_t row = size_t((z * ny_ + y) * nx_);
         uint32_t i = start_[row + size_t(xa)];
         const uint32_t end = start_[row + size_t(xb) + 1];
         while (i < end && sorted_[i].x < x_lo) ++i;
-        for (; i < end && sorted_[i].x <= x_hi; ++i) {
-          const Member& m = sorted_[i];
-          if (m.g == g) continue;
-          const double dx = double(m.x) - p.x, dy = double(m.y) - p.y, dz = double(m.z) - p.z;
-          const double d2 = dx * dx + dy * dy + dz * dz;
-          const double l = link_ * (sg + double(m.scale));
-          if (d2 <= r2 && d2 <= l * l) f(m.g);
+        uint32_t last = i;
+        while (last < end && sorted_[last].x <= x_hi) ++last;
+        while (i < last) {
+          const uint32_t batch_end = std::min(last, i + kFoundBatch);
+          size_t count = 0;
+          for (; i < batch_end; ++i) {
+            const Member& m = sorted_[i];
+            const double dx = double(m.x) - p.x, dy = double(m.y) - p.y, dz = double(m.z) - p.z;
+            const double d2 = dx * dx + dy * dy + dz * dz;
+            const double l = link_ * (sg + double(m.scale));
+            found[count] = m.g;
+            count += size_t((d2 <= r2) & (d2 <= l * l) & (m.g != g));
+          }
+          for (size_t k = 0; k < count; ++k) f(found[k]);
         }
       }
     return true;
   }
 
  private:
+  static constexpr uint32_t kFoundBatch = 64;
   int64_t cell_of(double v) const { return int64_t(std::floor(v / cell_)); }
   struct Member {
     float x, y, z, scale;
