@@ -246,7 +246,6 @@ ApartReport drop_apart_islands(std::vector<bool>& selection, const GaussianScene
     for (size_t i = 0; i < selected.size(); ++i) (scales[i] > limit ? broad : members).push_back(selected[i]);
   }
   const LinkGrid touching(scene, members, link.link_sigmas);
-
   ZeroedArray<uint8_t> state(n);
   std::vector<uint32_t> frontier, leave;
   std::vector<uint32_t> pieces;                    // the Gaussians of the sets mostly seen behind too small to leave ...
