@@ -236,15 +236,19 @@ int run_eval_ablation(const Args& args) {
   for (size_t i = 0; i < tasks.size() + fixture_tasks.size(); ++i) std::printf("---|");
   std::printf("\n");
   std::fflush(stdout);
-  auto write_overlays = [&](const segment::Session& session, const std::string& name) {
+  // truth (synthetic tasks): the true object's Gaussians of `scene`, outlined in each view; null for real tasks.
+  auto write_overlays = [&](const segment::Session& session, const std::string& name, const GaussianScene* scene,
+                            const std::vector<bool>* truth) {
     namespace fs = std::filesystem;
     const fs::path dir = fs::path(overlays) / name;
     fs::create_directories(dir);
     std::string table = "view status candidate sam_score mask_px overlap selection_inside iou prompted depth_layers background surface_offset surface_tolerance whole_px beyond_part_px\n";
     for (size_t k = 0; k < session.views().size(); ++k) {
       const segment::ViewState& v = session.view_states()[k];
+      const Camera& cam = session.views()[k].camera;
+      const Image truth_mask = truth ? segment::selection_mask(*scene, cam, *truth, cam.width, cam.height) : Image{};
       write_png((dir / (session.views()[k].name + ".png")).string(),
-                segment::make_overlay(session.views()[k].rgb_image(), v, session.selection_coverage(int(k))));
+                segment::make_overlay(session.views()[k].rgb_image(), v, session.selection_coverage(int(k)), truth_mask));
       char line[256];
       std::snprintf(line, sizeof line, "%s %s %d %.3f %d %.3f %.3f %.3f %d %d %zu %.4f %.4f %d %d\n", session.views()[k].name.c_str(),
                     status_word(v.status),
@@ -367,7 +371,7 @@ int run_eval_ablation(const Args& args) {
         if (!overlays.empty() && ci == 0) {  // the first configuration's evidence, per task (and click) and view
           std::string name = s->name + "_" + s->scene.objects[size_t(t->object)].name;
           if (k > 0) name += "_click" + std::to_string(k);
-          write_overlays(*session, name);
+          write_overlays(*session, name, &s->scene.bundle.gaussians, &truth);
         }
       }
       close_task(tc);
@@ -387,7 +391,7 @@ int run_eval_ablation(const Args& args) {
         if (granularity_choice)
           best_granularity(tc, *session, [&] { return segment::score_task(t, b, session->selection(), so.threads).iou; });
         add_click(tc, r.iou, r.accuracy, tm.ms_interaction());
-        if (!overlays.empty() && ci == 0) write_overlays(*session, k ? t.name + "_click" + std::to_string(k) : t.name);
+        if (!overlays.empty() && ci == 0) write_overlays(*session, k ? t.name + "_click" + std::to_string(k) : t.name, nullptr, nullptr);
       }
       close_task(tc);
     }

@@ -18,9 +18,18 @@ void disc(Image& img, double cx, double cy, double r, const float c[3]) {
       if (d <= r) put(img, x, y, d > r - 1.5 ? white : c);
     }
 }
+
+// The pixels of `m` (> 0.5) with a 4-neighbour outside it, drawn in `c`.
+void outline(Image& out, const Image& m, const float c[3]) {
+  if (m.empty()) return;
+  for (int y = 1; y + 1 < m.height; ++y)
+    for (int x = 1; x + 1 < m.width; ++x)
+      if (m.at(x, y) > 0.5f && (m.at(x - 1, y) <= 0.5f || m.at(x + 1, y) <= 0.5f || m.at(x, y - 1) <= 0.5f || m.at(x, y + 1) <= 0.5f))
+        put(out, x, y, c);
+}
 }  // namespace
 
-Image make_overlay(const Image& rgb, const ViewState& st, const Image& coverage) {
+Image make_overlay(const Image& rgb, const ViewState& st, const Image& coverage, const Image& truth) {
   Image out = rgb;
   const size_t n = size_t(rgb.width) * rgb.height;
   for (size_t i = 0; i < n; ++i) {
@@ -31,17 +40,11 @@ Image make_overlay(const Image& rgb, const ViewState& st, const Image& coverage)
     if (in_mask) { p[0] = 0.6f * p[0]; p[1] = 0.6f * p[1] + 0.15f; p[2] = 0.6f * p[2] + 0.4f; }
     if (in_sel) { p[0] = 0.5f * p[0] + 0.5f; p[1] = 0.5f * p[1] + 0.25f; p[2] *= 0.5f; }
   }
-  // Selection outline in bright orange so it stays visible over the SAM tint.
-  if (!coverage.empty())
-    for (int y = 1; y + 1 < rgb.height; ++y)
-      for (int x = 1; x + 1 < rgb.width; ++x) {
-        const bool c = coverage.at(x, y) > 0.5f;
-        if (c && (coverage.at(x - 1, y) <= 0.5f || coverage.at(x + 1, y) <= 0.5f || coverage.at(x, y - 1) <= 0.5f ||
-                  coverage.at(x, y + 1) <= 0.5f)) {
-          const float o[3] = {1.f, 0.55f, 0.f};
-          put(out, x, y, o);
-        }
-      }
+  // Selection outline in bright orange so it stays visible over the SAM tint; the truth's
+  // in cyan over it.
+  const float orange[3] = {1.f, 0.55f, 0.f}, cyan[3] = {0.f, 0.95f, 1.f};
+  outline(out, coverage, orange);
+  outline(out, truth, cyan);
   const double r = std::max(4.0, 0.012 * std::max(rgb.width, rgb.height));
   for (const Click& c : st.clicks) {
     const float col[3] = {c.label ? 0.1f : 0.95f, c.label ? 0.9f : 0.1f, 0.1f};
