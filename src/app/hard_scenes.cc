@@ -48,6 +48,17 @@ void cylinder(SceneBuilder& b, const Vec3& c, double r0, double r1, double heigh
   }
 }
 
+// `count` Gaussians on the quad p00, p10, p11, p01 (bilinear), facing n, coloured by colour(u, v).
+template <class Colour>
+void quad(SceneBuilder& b, const Vec3& p00, const Vec3& p10, const Vec3& p11, const Vec3& p01, const Vec3& n, int count,
+          double size, Colour colour, int label, double shine) {
+  for (int i = 0; i < count; ++i) {
+    const double u = b.rng.uniform(), v = b.rng.uniform();
+    const Vec3 p = (p00 * (1 - u) + p10 * u) * (1 - v) + (p01 * (1 - u) + p11 * u) * v;
+    b.splat(p, n, size, colour(u, v), label, shine);
+  }
+}
+
 // An axis-aligned box's five visible faces (no bottom).
 void box(SceneBuilder& b, const Vec3& c, double h, double hz, int n, double size, const Vec3& rgb,
          const Vec3& line_rgb, int label) {
@@ -2117,15 +2128,6 @@ EvalScene garage(const EvalSetOptions& opt) {
   const double wall_y = 2.4, side_x = 3.6, front_y = -1.6, room_h = 3.6;
   auto noise = [&](double a) { return Vec3{1, 1, 1} * (a * rng.normal()); };
   auto solid = [](const Vec3& c) { return [c](const Vec3&, const Vec3&) { return c; }; };
-  // n Gaussians on the quad p00, p10, p11, p01 (bilinear), facing n, coloured by colour(u, v).
-  auto quad = [&](const Vec3& p00, const Vec3& p10, const Vec3& p11, const Vec3& p01, const Vec3& n, int count, double size,
-                  auto colour, int label, double shine) {
-    for (int i = 0; i < count; ++i) {
-      const double u = rng.uniform(), v = rng.uniform();
-      const Vec3 p = (p00 * (1 - u) + p10 * u) * (1 - v) + (p01 * (1 - u) + p11 * u) * v;
-      b.splat(p, n, size, colour(u, v), label, shine);
-    }
-  };
   // The room: painted concrete blocks (a darker grey dado), a block wall with a window at the
   // left, a white sectional door at the right, a sealed concrete floor; coarse, loose Gaussians.
   b.depth_jitter = 0.006;
@@ -2204,9 +2206,9 @@ EvalScene garage(const EvalSetOptions& opt) {
         else b.splat({x, y + sy * w, z}, {x < -2.6 ? -1.0 : 1.0, 0, 0}, 0.008 * sz, post_rgb + noise(0.02), -1, 0.05);
       }
   for (double z : shelf_z) {
-    quad({sh_x0, sh_y0, z}, {sh_x1, sh_y0, z}, {sh_x1, sh_y1, z}, {sh_x0, sh_y1, z}, {0, 0, 1}, int(700 * d), 0.016 * sz,
+    quad(b, {sh_x0, sh_y0, z}, {sh_x1, sh_y0, z}, {sh_x1, sh_y1, z}, {sh_x0, sh_y1, z}, {0, 0, 1}, int(700 * d), 0.016 * sz,
          [&](double, double) { return galv + noise(0.02); }, -1, 0.06);
-    quad({sh_x0, sh_y0, z - 0.035}, {sh_x1, sh_y0, z - 0.035}, {sh_x1, sh_y0, z}, {sh_x0, sh_y0, z}, {0, -1, 0}, int(260 * d), 0.008 * sz,
+    quad(b, {sh_x0, sh_y0, z - 0.035}, {sh_x1, sh_y0, z - 0.035}, {sh_x1, sh_y0, z}, {sh_x0, sh_y0, z}, {0, -1, 0}, int(260 * d), 0.008 * sz,
          [&](double, double) { return galv * 0.9 + noise(0.02); }, -1, 0.06);
   }
   const Vec3 bin_rgb[] = {{0.18, 0.36, 0.62}, {0.85, 0.72, 0.18}, {0.30, 0.30, 0.32}, {0.18, 0.36, 0.62}, {0.86, 0.86, 0.83}};
@@ -2364,14 +2366,14 @@ EvalScene garage(const EvalSetOptions& opt) {
     Vec3 n = normalized(cross(p10 - p00, p01 - p00));
     if (dot(n, (p00 + p11) * 0.5 - tub_mid) < 0) n = -n;
     const int count = int(norm(cross(p11 - p00, p01 - p10)) * 0.5 * 4000 * d) + 40;
-    quad(p00, p10, p11, p01, n, count, 0.014 * sz, [&](double, double) { return tub_out + noise(0.02); }, barrow, 0.08);
-    quad(p00 - n * 0.006, p10 - n * 0.006, p11 - n * 0.006, p01 - n * 0.006, -n, count, 0.014 * sz,
+    quad(b, p00, p10, p11, p01, n, count, 0.014 * sz, [&](double, double) { return tub_out + noise(0.02); }, barrow, 0.08);
+    quad(b, p00 - n * 0.006, p10 - n * 0.006, p11 - n * 0.006, p01 - n * 0.006, -n, count, 0.014 * sz,
          [&](double, double v) { return tub_in * (0.85 + 0.15 * v) + noise(0.02); }, barrow, 0.05);
     tube(b, p01, p11, 0.012, 0.012, int(norm(p11 - p01) * 300 * d) + 30, 0.005 * sz, tub_out * 1.15, barrow);
   }
-  quad(bot[0], bot[1], bot[2], bot[3], {0, 0, -1}, int(500 * d), 0.014 * sz, [&](double, double) { return tub_out * 0.8 + noise(0.02); },
+  quad(b, bot[0], bot[1], bot[2], bot[3], {0, 0, -1}, int(500 * d), 0.014 * sz, [&](double, double) { return tub_out * 0.8 + noise(0.02); },
        barrow, 0.05);
-  quad(bot[0] + Vec3{0, 0, 0.006}, bot[1] + Vec3{0, 0, 0.006}, bot[2] + Vec3{0, 0, 0.006}, bot[3] + Vec3{0, 0, 0.006}, {0, 0, 1},
+  quad(b, bot[0] + Vec3{0, 0, 0.006}, bot[1] + Vec3{0, 0, 0.006}, bot[2] + Vec3{0, 0, 0.006}, bot[3] + Vec3{0, 0, 0.006}, {0, 0, 1},
        int(500 * d), 0.014 * sz, [&](double, double) { return tub_in * 0.8 + noise(0.02); }, barrow, 0.05);
   const Vec3 hub = wb + Vec3{0.66, 0, 0.19};
   for (int i = 0, n = int(1800 * d); i < n; ++i) {  // the tyre: a torus around the axle (y), tread grooves
@@ -2471,15 +2473,6 @@ EvalScene bedroom(const EvalSetOptions& opt) {
   const double wall_y = 2.4, side_x = 3.6, front_y = -1.8, room_h = 2.8;
   auto noise = [&](double a) { return Vec3{1, 1, 1} * (a * rng.normal()); };
   auto solid = [](const Vec3& c) { return [c](const Vec3&, const Vec3&) { return c; }; };
-  // n Gaussians on the quad p00, p10, p11, p01 (bilinear), facing n, coloured by colour(u, v).
-  auto quad = [&](const Vec3& p00, const Vec3& p10, const Vec3& p11, const Vec3& p01, const Vec3& n, int count, double size,
-                  auto colour, int label, double shine) {
-    for (int i = 0; i < count; ++i) {
-      const double u = rng.uniform(), v = rng.uniform();
-      const Vec3 p = (p00 * (1 - u) + p10 * u) * (1 - v) + (p01 * (1 - u) + p11 * u) * v;
-      b.splat(p, n, size, colour(u, v), label, shine);
-    }
-  };
   // n Gaussians on a rounded box (a superellipsoid, sum over axes of |l|^(2 / e) = 1 with l the
   // point in units of r: e 1 round, smaller squarer) of half sizes r along the axes ax, ay, az
   // around c, facing out, coloured by colour(l). Each is a point on the box's faces (by their
@@ -2562,9 +2555,9 @@ EvalScene bedroom(const EvalSetOptions& opt) {
             frame ? 0.03 : 0.08);
   }
   const double sill_z = win_z0 - 0.02, sill_y = wall_y - 0.22;
-  quad({win_x0 - 0.1, sill_y, sill_z}, {win_x1 + 0.1, sill_y, sill_z}, {win_x1 + 0.1, wall_y, sill_z}, {win_x0 - 0.1, wall_y, sill_z},
+  quad(b, {win_x0 - 0.1, sill_y, sill_z}, {win_x1 + 0.1, sill_y, sill_z}, {win_x1 + 0.1, wall_y, sill_z}, {win_x0 - 0.1, wall_y, sill_z},
        {0, 0, 1}, int(500 * d), 0.015 * sz, [&](double, double) { return white + noise(0.015); }, -1, 0.04);  // the sill
-  quad({win_x0 - 0.1, sill_y, sill_z - 0.04}, {win_x1 + 0.1, sill_y, sill_z - 0.04}, {win_x1 + 0.1, sill_y, sill_z},
+  quad(b, {win_x0 - 0.1, sill_y, sill_z - 0.04}, {win_x1 + 0.1, sill_y, sill_z - 0.04}, {win_x1 + 0.1, sill_y, sill_z},
        {win_x0 - 0.1, sill_y, sill_z}, {0, -1, 0}, int(200 * d), 0.01 * sz, [&](double, double) { return white * 0.95 + noise(0.015); },
        -1, 0.04);
   for (int i = 0, n = int(1200 * d); i < n; ++i) {  // a print above the bed, 3 cm off the wall: soft colour fields, a thin black frame
@@ -2714,14 +2707,14 @@ EvalScene bedroom(const EvalSetOptions& opt) {
          },
          -1);
   for (double x : {bed_x0, bed_x1}) {  // the base's and the mattress's sides
-    quad({x, bed_y0, 0}, {x, bed_y1, 0}, {x, bed_y1, 0.3}, {x, bed_y0, 0.3}, {x < 0 ? -1.0 : 1.0, 0, 0}, int(1000 * d), 0.02 * sz,
+    quad(b, {x, bed_y0, 0}, {x, bed_y1, 0}, {x, bed_y1, 0.3}, {x, bed_y0, 0.3}, {x < 0 ? -1.0 : 1.0, 0, 0}, int(1000 * d), 0.02 * sz,
          [&](double, double) { return base_grey + noise(0.02); }, -1, 0.02);
-    quad({x, turn_y, 0.3}, {x, bed_y1, 0.3}, {x, bed_y1, 0.5}, {x, turn_y, 0.5}, {x < 0 ? -1.0 : 1.0, 0, 0}, int(250 * d), 0.015 * sz,
+    quad(b, {x, turn_y, 0.3}, {x, bed_y1, 0.3}, {x, bed_y1, 0.5}, {x, turn_y, 0.5}, {x < 0 ? -1.0 : 1.0, 0, 0}, int(250 * d), 0.015 * sz,
          [&](double, double) { return white + noise(0.015); }, -1, 0.02);
   }
-  quad({bed_x0, bed_y0, 0}, {bed_x1, bed_y0, 0}, {bed_x1, bed_y0, 0.3}, {bed_x0, bed_y0, 0.3}, {0, -1, 0}, int(700 * d), 0.02 * sz,
+  quad(b, {bed_x0, bed_y0, 0}, {bed_x1, bed_y0, 0}, {bed_x1, bed_y0, 0.3}, {bed_x0, bed_y0, 0.3}, {0, -1, 0}, int(700 * d), 0.02 * sz,
        [&](double, double) { return base_grey + noise(0.02); }, -1, 0.02);
-  quad({bed_x0, turn_y, 0.5}, {bed_x1, turn_y, 0.5}, {bed_x1, bed_y1, 0.5}, {bed_x0, bed_y1, 0.5}, {0, 0, 1}, int(1200 * d), 0.015 * sz,
+  quad(b, {bed_x0, turn_y, 0.5}, {bed_x1, turn_y, 0.5}, {bed_x1, bed_y1, 0.5}, {bed_x0, bed_y1, 0.5}, {0, 0, 1}, int(1200 * d), 0.015 * sz,
        [&](double, double) { return white + noise(0.015); }, -1, 0.02);  // the sheet under the pillows
   auto quilted = [&](double a, double c) {  // the duvet's 30 cm squares
     return (std::fmod(a + 10, 0.3) < 0.012 || std::fmod(c + 10, 0.3) < 0.012 ? sage * 0.85 : sage) + noise(0.02);
