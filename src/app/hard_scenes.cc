@@ -1508,6 +1508,11 @@ void ellipsoid(SceneBuilder& b, const Vec3& c, const Vec3& r, int n, double size
   }
 }
 
+// A colour(local point, normal) for cuboid: one colour all over.
+auto one_colour(const Vec3& c) {
+  return [c](const Vec3&, const Vec3&) { return c; };
+}
+
 // An axis-aligned cuboid of half sizes h around c, its five faces but the bottom, sampled
 // by area, coloured by colour(local point, normal). (`box` above samples its faces evenly
 // and stays as it is: the older scenes are built from its random draws.)
@@ -2127,7 +2132,6 @@ EvalScene garage(const EvalSetOptions& opt) {
   const double d = opt.density, sz = 1 / std::sqrt(d);
   const double wall_y = 2.4, side_x = 3.6, front_y = -1.6, room_h = 3.6;
   auto noise = [&](double a) { return Vec3{1, 1, 1} * (a * rng.normal()); };
-  auto solid = [](const Vec3& c) { return [c](const Vec3&, const Vec3&) { return c; }; };
   // The room: painted concrete blocks (a darker grey dado), a block wall with a window at the
   // left, a white sectional door at the right, a sealed concrete floor; coarse, loose Gaussians.
   b.depth_jitter = 0.006;
@@ -2326,7 +2330,7 @@ EvalScene garage(const EvalSetOptions& opt) {
   b.shape_jitter = 0.2;
   const Vec3 cone_c{1.72, 1.98, 0};
   const int cone = add_object(demo, "traffic_cone", cone_c + Vec3{0, 0, 0.3}, 0.3f);
-  cuboid(b, cone_c + Vec3{0, 0, 0.015}, {0.18, 0.18, 0.015}, int(700 * d), 0.011 * sz, solid(Vec3{0.08, 0.08, 0.09}), cone);
+  cuboid(b, cone_c + Vec3{0, 0, 0.015}, {0.18, 0.18, 0.015}, int(700 * d), 0.011 * sz, one_colour(Vec3{0.08, 0.08, 0.09}), cone);
   for (int i = 0, n = int(2600 * d); i < n; ++i) {
     const double a = rng.range(0, 2 * M_PI), t = std::sqrt(rng.uniform());  // more where it is wider
     const double z = 0.03 + 0.67 * (1 - t), r = 0.025 + 0.115 * t;
@@ -2396,7 +2400,7 @@ EvalScene garage(const EvalSetOptions& opt) {
     tube(b, under, back, 0.016, 0.016, int(300 * d) + 40, 0.006 * sz, black, barrow);
     tube(b, back, grip_end, 0.02, 0.02, int(200 * d) + 30, 0.006 * sz, {0.58, 0.40, 0.22}, barrow);
     tube(b, wb + Vec3{-0.22, side * 0.2, 0.29}, wb + Vec3{-0.3, side * 0.25, 0.02}, 0.014, 0.014, int(220 * d) + 30, 0.006 * sz, black, barrow);
-    cuboid(b, wb + Vec3{-0.3, side * 0.25, 0.01}, {0.04, 0.02, 0.01}, 50, 0.005, solid(black), barrow);
+    cuboid(b, wb + Vec3{-0.3, side * 0.25, 0.01}, {0.04, 0.02, 0.01}, 50, 0.005, one_colour(black), barrow);
   }
   tube(b, hub + Vec3{0, -0.06, 0}, hub + Vec3{0, 0.06, 0}, 0.01, 0.01, 40, 0.004, {0.6, 0.6, 0.62}, barrow);
   tube(b, wb + Vec3{-0.24, -0.2, 0.16}, wb + Vec3{-0.24, 0.2, 0.16}, 0.011, 0.011, int(120 * d) + 20, 0.005 * sz, black, barrow);
@@ -2472,7 +2476,6 @@ EvalScene bedroom(const EvalSetOptions& opt) {
   const double d = opt.density, sz = 1 / std::sqrt(d);
   const double wall_y = 2.4, side_x = 3.6, front_y = -1.8, room_h = 2.8;
   auto noise = [&](double a) { return Vec3{1, 1, 1} * (a * rng.normal()); };
-  auto solid = [](const Vec3& c) { return [c](const Vec3&, const Vec3&) { return c; }; };
   // n Gaussians on a rounded box (a superellipsoid, sum over axes of |l|^(2 / e) = 1 with l the
   // point in units of r: e 1 round, smaller squarer) of half sizes r along the axes ax, ay, az
   // around c, facing out, coloured by colour(l). Each is a point on the box's faces (by their
@@ -2612,7 +2615,7 @@ EvalScene bedroom(const EvalSetOptions& opt) {
     ellipsoid(b, {x, cur_y, rod_z}, {0.035, 0.035, 0.035}, 250, 0.006, [&](const Vec3&) { return iron * 1.2 + noise(0.02); }, rod, 0.1);
   for (double x : {rod_x0 + 0.1, rod_x1 - 0.1}) {
     tube(b, {x, wall_y - 0.01, rod_z - 0.02}, {x, cur_y, rod_z - 0.02}, 0.008, 0.008, 120, 0.004, iron, rod);
-    cuboid(b, {x, wall_y - 0.006, rod_z - 0.02}, {0.025, 0.006, 0.04}, 80, 0.005, solid(iron), rod);
+    cuboid(b, {x, wall_y - 0.006, rod_z - 0.02}, {0.025, 0.006, 0.04}, 80, 0.005, one_colour(iron), rod);
   }
   // An acoustic guitar leaning on the wall between the window and the bed: a spruce top with a
   // rosette round the sound hole and a bridge, mahogany sides and back, a neck with a dark
