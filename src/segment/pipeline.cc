@@ -7,6 +7,7 @@
 #include "core/centre_index.h"
 #include "core/error.h"
 #include "models/tensor_memory.h"
+#include "segment/trained_background.h"
 #include "segment/view_selection.h"
 #include "segment/voting_views.h"
 
@@ -21,9 +22,9 @@ int view_of_camera(const Session& s, int camera_index) {
 std::unique_ptr<Session> segment_from_prompts(const SceneBundle& b, int camera_index,
                                               const std::vector<Click>& clicks,
                                               std::shared_ptr<const models::SamModel> sam,
-                                              const SessionOptions& so, const ViewOptions& vo,
-                                              const std::string& views_spec, PipelineTimings* timings,
-                                              const Progress& progress) {
+                                              const SessionOptions& session_options,
+                                              const ViewOptions& view_options, const std::string& views_spec,
+                                              PipelineTimings* timings, const Progress& progress) {
   if (camera_index < 0 || camera_index >= int(b.cameras.size())) throw Error("no camera " + std::to_string(camera_index));
   if (clicks.empty()) throw Error("segmentation needs at least one click");
   if (clicks.front().label != 1) throw Error("the first click must be positive");
@@ -33,6 +34,13 @@ std::unique_ptr<Session> segment_from_prompts(const SceneBundle& b, int camera_i
       throw Error("click (" + std::to_string(c.x) + ", " + std::to_string(c.y) + ") lies outside camera '" +
                   cam.name + "' (" + std::to_string(cam.width) + "x" + std::to_string(cam.height) + ")");
   auto t0 = std::chrono::steady_clock::now();
+  // Every view, the ones a click adds later included, over the colour the scene was
+  // trained on: thin and half-transparent parts look to SAM as they did in the photos.
+  std::string background_line;
+  const ViewOptions vo = with_trained_background(b, view_options, &background_line);
+  if (progress && !background_line.empty()) progress(background_line);
+  SessionOptions so = session_options;
+  for (int c = 0; c < 3; ++c) so.see_through_views.background[c] = vo.background[c];
   PipelineTimings t;
   std::vector<SegmentView> views;
   std::shared_ptr<const CentreIndex> neighbours;  // built for view selection, then the session's

@@ -47,6 +47,9 @@ struct ViewOptions {
   std::string cache_dir;     // embedding cache ("" = none)
   int threads = 0;
   float background[3] = {0.f, 0.f, 0.f};
+  // Render over the colour the scene was trained on where its photos show it, instead of
+  // `background` (trained_background.h: with_trained_background).
+  bool trained_background = true;
   float near_plane = RenderSettings{}.near_plane;  // Gaussians nearer are not rendered (see_through.h)
 };
 

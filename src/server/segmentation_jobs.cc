@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "models/sam.h"
+#include "segment/trained_background.h"
 #include "server/app_error.h"
 
 namespace fs = std::filesystem;
@@ -152,10 +153,17 @@ void SegmentationJobs::prepare_job(const JobRunner::Report& report) {
       fs::create_directories(options_.views.cache_dir, ec);
     }
     sam_ = std::make_shared<const models::SamModel>(enc.string(), dec.string(), options_.threads);
-    seg_ = std::make_unique<Segmentation>(sam_, options_.session, options_.views, options_.settings);
-    seg_->set_kept_budget(size_t(options_.kept_bytes));
     uint64_t fingerprint = 0;
     std::shared_ptr<const SceneBundle> snap = snapshot(fingerprint);
+    // SAM sees the views over the colour the scene was trained on (trained_background.h),
+    // found once from the photos of the scene as loaded: an edited scene no longer matches them.
+    std::string background_line;
+    const segment::ViewOptions views = segment::with_trained_background(*snap, options_.views, &background_line);
+    if (!background_line.empty()) log_.note(background_line);
+    segment::SessionOptions session = options_.session;
+    for (int c = 0; c < 3; ++c) session.see_through_views.background[c] = views.background[c];
+    seg_ = std::make_unique<Segmentation>(sam_, session, views, options_.settings);
+    seg_->set_kept_budget(size_t(options_.kept_bytes));
     set_state("preparing", "rendering views and computing SAM embeddings");
     seg_->open(snap, fingerprint, [&](int done, int total, const std::string& line) {
       report(done, total, line);
