@@ -13,6 +13,7 @@
 #include "io/image_io.h"
 #include "io/atomic_file.h"
 #include "render/rasterizer.h"
+#include "segment/trained_background.h"
 
 namespace fs = std::filesystem;
 
@@ -37,6 +38,12 @@ int run_render(const std::vector<std::string>& argv) {
   const int width = args.get_int("width", 0);
   if (args.has("width") && (width < 8 || width > 16384)) throw Error("--width must be between 8 and 16384");
   SceneBundle b = load_scene_from_args(args);
+  if (!args.has("background")) {  // the colour it was trained over, as its photos show
+    const segment::TrainedBackground bg = segment::estimate_trained_background(b);
+    if (bg.photos > 0) std::printf("%s%s\n", bg.summary().c_str(), bg.found ? "" : ": rendering over black");
+    if (bg.found)
+      for (int c = 0; c < 3; ++c) s.background[c] = bg.rgb[c];
+  }
   const std::string out_dir = args.get("out");
 
   std::vector<const Camera*> cams;
@@ -106,7 +113,9 @@ RegisterCommand reg("render", "render the scene's cameras to PNG (colour, depth,
                     "                      [--threads N] [--sh-degree D] [--cameras FILE] [--images DIR]\n"
                     "  --depth    also write <name>_depth.png (16-bit, scale printed)\n"
                     "  --alpha    also write <name>_alpha.png (accumulated opacity)\n"
-                    "  --compare  print PSNR against the source photos (found by camera name)",
+                    "  --compare  print PSNR against the source photos (found by camera name)\n"
+                    "  --background r,g,b  the colour behind the Gaussians (default: the one the scene was\n"
+                    "             trained over where its photos show it, else black)",
                     run_render);
 
 }  // namespace

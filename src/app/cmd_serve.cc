@@ -8,6 +8,7 @@
 #include "app/segment_args.h"
 #include "core/error.h"
 #include "edit/colorize.h"
+#include "segment/trained_background.h"
 #include "server/serve.h"
 
 namespace isegman::app {
@@ -56,6 +57,12 @@ int run_serve(const std::vector<std::string>& argv) {
     o.app.background[0] = float(bg.r);
     o.app.background[1] = float(bg.g);
     o.app.background[2] = float(bg.b);
+  } else {  // shown over the colour it was trained on, as its photos show it
+    const segment::TrainedBackground bg = segment::estimate_trained_background(bundle);
+    if (bg.found) {
+      std::printf("%s\n", bg.summary().c_str());
+      for (int c = 0; c < 3; ++c) o.app.background[c] = bg.rgb[c];
+    }
   }
   if (o.host != "127.0.0.1" && o.host != "localhost" && o.host != "::1")
     std::printf("warning: listening on %s: anyone who can reach it can edit the scene and write to %s\n",
@@ -79,7 +86,9 @@ std::string usage() {
              "  --views auto (the default): 20 views, spread over the cameras until the first click of a\n"
              "  segmentation, then the 20 that best see the clicked point (built on demand; views no longer\n"
              "  used stay as spares within --kept-memory-mb), so a click's cost does not grow with the\n"
-             "  number of cameras. Defaults differ from `segment`: --max-side 512.\n") +
+             "  number of cameras. Defaults differ from `segment`: --max-side 512.\n"
+             "  --background: the colour the page shows behind the Gaussians (default: the one the scene\n"
+             "  was trained over where its photos show it, else black).\n") +
          kSegmentOptionsHelp;
 }
 
