@@ -409,20 +409,19 @@ int Session::see_through_view(int view, const Click& c) {
   // Nor where SAM already takes them in with the clicked surface (the near leaves of the same
   // plant): they are part of what the user means. Unless they stand apart in depth and,
   // rendered without them, SAM at the click segments far less than that mask: then the mask
-  // was an enclosure (a cage's mesh, a playpen's bars) around the smaller thing clicked. The
-  // second test costs a render and an encoding.
-  std::optional<SegmentView> peeled;
-  const models::SegmentResult direct = sam_->decode(base.embedding, {c});
-  const Mask& at_click = direct.mask();
-  if (holds_most([&](uint32_t p) { return p < at_click.data.size() && at_click.data[p]; })) {
-    if (so.min_peeled_share <= 0 || occ.clearance < so.gap + so.min_enclosure_gap) return view;
-    peeled = build_view(scene_, base.camera, -1, *sam_, vo);
-    const size_t behind = mask_area(sam_->decode(peeled->embedding, {c}).mask());
-    if (double(behind) >= so.min_peeled_share * double(mask_area(at_click))) return view;
-  }
-  if (!peeled) peeled = build_view(scene_, base.camera, -1, *sam_, vo);
-  peeled->name = base.name + "_through";
-  const int index = add_view(std::move(*peeled));
+  // was an enclosure (a cage's mesh, a playpen's bars) around the smaller thing clicked. That
+  // test, and the next, cost a render and an encoding.
+  const Mask at_click = sam_->decode(base.embedding, {c}).mask();
+  const bool enclosure = holds_most([&](uint32_t p) { return p < at_click.data.size() && at_click.data[p]; });
+  if (enclosure && (so.min_peeled_share <= 0 || occ.clearance < so.gap + so.min_enclosure_gap)) return view;
+  SegmentView peeled = build_view(scene_, base.camera, -1, *sam_, vo);
+  const double behind = double(mask_area(sam_->decode(peeled.embedding, {c}).mask()));
+  if (enclosure && behind >= so.min_peeled_share * double(mask_area(at_click))) return view;
+  // Nor where the cut went through the scene itself: SAM then sees one region in most of
+  // the peeled view (max_peeled_view_share).
+  if (behind > so.max_peeled_view_share * double(peeled.camera.width) * double(peeled.camera.height)) return view;
+  peeled.name = base.name + "_through";
+  const int index = add_view(std::move(peeled));
   peeled_.push_back({key, index});
   return index;
 }
