@@ -84,4 +84,14 @@ bool read_image_size(const std::string& path, int& width, int& height) {
   return image_size(read, width, height);
 }
 
+bool png_has_alpha(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  uint8_t b[26];
+  static const uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (!f.read(reinterpret_cast<char*>(b), sizeof b) || std::memcmp(b, kPng, 8) != 0 || std::memcmp(b + 12, "IHDR", 4) != 0)
+    return false;
+  const uint8_t colour_type = b[25];  // after width, height (4 bytes each) and bit depth
+  return colour_type == 4 || colour_type == 6;
+}
+
 }  // namespace isegman

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "io/image_io.h"
+#include "io/image_size.h"
 #include "render/rasterizer.h"
 
 namespace isegman::segment {
@@ -53,6 +54,9 @@ TrainedBackground estimate_trained_background(const SceneBundle& b, const Traine
   size_t compared = 0;
   for (size_t i : cameras_with_photos(b.cameras, o.max_photos)) {
     const Camera& cam = b.cameras[i];
+    // A photo with an alpha channel was composited over the background by the trainer
+    // itself: it shows no background colour to recover.
+    if (png_has_alpha(cam.image_path)) continue;
     Image photo;
     try {
       photo = read_image(cam.image_path, 3);

@@ -36,8 +36,9 @@ struct TrainedBackground {
 };
 
 // Compares the scene's renders with its cameras' photos (Camera::image_path). No photos,
-// photos that cannot be read or have another aspect ratio, too few uncovered pixels or
-// estimates that disagree: not found (the caller keeps its colour).
+// photos that cannot be read, have another aspect ratio or an alpha channel (the trainer
+// composited those itself), too few uncovered pixels or estimates that disagree: not found
+// (the caller keeps its colour).
 TrainedBackground estimate_trained_background(const SceneBundle& scene, const TrainedBackgroundOptions& options = {});
 
 // `options` with its background set to the estimate's colour when

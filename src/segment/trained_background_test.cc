@@ -110,19 +110,21 @@ TEST(TrainedBackground, IsUnknownWithoutPhotosOrWhereTheyShowARealSurrounding) {
   EXPECT_EQ(bg.rgb[0], 0.f);
 }
 
-TEST(TrainedBackground, LeavesOutPhotosThatAreNotTheCamerasFrame) {
+TEST(TrainedBackground, LeavesOutPhotosThatAreNotTheCamerasFrameOrHaveAlpha) {
   SceneBundle b = cluster_scene();
   const float grey[3] = {0.5f, 0.5f, 0.5f};
   const std::string dir = isegman::testing::fresh_temp_dir("isegman-bg-", "frames");
   write_photos(b, dir, grey);
-  // One photo cropped square, one not an image at all: both left out, the others decide.
+  // One photo cropped square, one not an image at all, one with an alpha channel (which the
+  // trainer composited itself): all three left out, the last one decides.
   write_png(b.cameras[0].image_path, Image(120, 120, 3, 0.1f));
   std::FILE* f = std::fopen(b.cameras[1].image_path.c_str(), "wb");
   ASSERT_NE(f, nullptr);
   std::fputs("not a png", f);
   std::fclose(f);
+  write_png(b.cameras[2].image_path, Image(160, 120, 4, 0.f));  // transparent: black where read
   const TrainedBackground bg = estimate_trained_background(b);
-  EXPECT_EQ(bg.photos, 2);
+  EXPECT_EQ(bg.photos, 1);
   ASSERT_TRUE(bg.found);
   EXPECT_NEAR(bg.rgb[1], 0.5, 0.02);
 }
