@@ -52,17 +52,22 @@ int run_serve(const std::vector<std::string>& argv) {
   o.app.kept_segmentation_bytes = uint64_t(kept_mb * 1024 * 1024);
   o.app.preview_side = args.get_int("preview", 640);
   if (o.app.preview_side < 64 || o.app.preview_side > 4096) throw Error("--preview must be in [64, 4096]");
+  // The colour the scene was trained over, as its photos show it: estimated once, here, for
+  // the page (unless --background) and for SAM's views (unless --no-trained-background).
+  segment::TrainedBackground trained;
+  if (!args.has("background") || o.app.views.trained_background) {
+    trained = segment::estimate_trained_background(bundle);
+    if (trained.found) std::printf("%s\n", trained.summary().c_str());
+  }
+  segment::render_over(trained, o.app.views, o.app.session);
+  o.app.views.trained_background = false;  // found above: the segmentation need not look again
   if (args.has("background")) {
     const edit::Rgb bg = edit::parse_color(args.get("background"));
     o.app.background[0] = float(bg.r);
     o.app.background[1] = float(bg.g);
     o.app.background[2] = float(bg.b);
-  } else {  // shown over the colour it was trained on, as its photos show it
-    const segment::TrainedBackground bg = segment::estimate_trained_background(bundle);
-    if (bg.found) {
-      std::printf("%s\n", bg.summary().c_str());
-      for (int c = 0; c < 3; ++c) o.app.background[c] = bg.rgb[c];
-    }
+  } else if (trained.found) {
+    for (int c = 0; c < 3; ++c) o.app.background[c] = trained.rgb[c];
   }
   if (o.host != "127.0.0.1" && o.host != "localhost" && o.host != "::1")
     std::printf("warning: listening on %s: anyone who can reach it can edit the scene and write to %s\n",

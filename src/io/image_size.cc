@@ -13,6 +13,13 @@ uint16_t be16(const uint8_t* p) { return uint16_t(p[0] << 8 | p[1]); }
 
 bool plausible(uint32_t w, uint32_t h) { return w > 0 && h > 0 && w <= (1u << 20) && h <= (1u << 20); }
 
+// Whether the file's first 16 bytes are a PNG signature followed by its IHDR chunk (whose
+// data, from byte 16 on, holds width, height, bit depth and colour type).
+bool png_header(const uint8_t* b) {
+  static const uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  return std::memcmp(b, kPng, 8) == 0 && std::memcmp(b + 12, "IHDR", 4) == 0;
+}
+
 // Walks JPEG segments up to the first start-of-frame marker. `read` fills `n` bytes at
 // `offset` and returns false past the end.
 template <typename Read>
@@ -52,8 +59,7 @@ bool image_size(Read read, int& width, int& height) {
   uint8_t b[24];
   if (!read(0, b, 3)) return false;
   if (b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) return jpeg_size(read, width, height);
-  static const uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-  if (!read(0, b, 24) || std::memcmp(b, kPng, 8) != 0 || std::memcmp(b + 12, "IHDR", 4) != 0) return false;
+  if (!read(0, b, 24) || !png_header(b)) return false;
   uint32_t w = be32(b + 16), h = be32(b + 20);
   if (!plausible(w, h)) return false;
   width = int(w);
@@ -87,9 +93,7 @@ bool read_image_size(const std::string& path, int& width, int& height) {
 bool png_has_alpha(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   uint8_t b[26];
-  static const uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-  if (!f.read(reinterpret_cast<char*>(b), sizeof b) || std::memcmp(b, kPng, 8) != 0 || std::memcmp(b + 12, "IHDR", 4) != 0)
-    return false;
+  if (!f.read(reinterpret_cast<char*>(b), sizeof b) || !png_header(b)) return false;
   const uint8_t colour_type = b[25];  // after width, height (4 bytes each) and bit depth
   return colour_type == 4 || colour_type == 6;
 }

@@ -36,11 +36,10 @@ std::unique_ptr<Session> segment_from_prompts(const SceneBundle& b, int camera_i
   auto t0 = std::chrono::steady_clock::now();
   // Every view, the ones a click adds later included, over the colour the scene was
   // trained on: thin and half-transparent parts look to SAM as they did in the photos.
-  std::string background_line;
-  const ViewOptions vo = with_trained_background(b, view_options, &background_line);
-  if (progress && !background_line.empty()) progress(background_line);
+  ViewOptions vo = view_options;
   SessionOptions so = session_options;
-  for (int c = 0; c < 3; ++c) so.see_through_views.background[c] = vo.background[c];
+  const std::string background_line = use_trained_background(b, vo, so);
+  if (progress && !background_line.empty()) progress(background_line);
   PipelineTimings t;
   std::vector<SegmentView> views;
   std::shared_ptr<const CentreIndex> neighbours;  // built for view selection, then the session's

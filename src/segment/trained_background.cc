@@ -97,16 +97,21 @@ TrainedBackground estimate_trained_background(const SceneBundle& b, const Traine
   return out;
 }
 
-ViewOptions with_trained_background(const SceneBundle& scene, ViewOptions options, std::string* summary) {
-  if (summary) summary->clear();
-  if (!options.trained_background) return options;
-  TrainedBackgroundOptions o;
-  o.threads = options.threads;
-  const TrainedBackground bg = estimate_trained_background(scene, o);
-  if (summary) *summary = bg.summary();
-  if (bg.found)
-    for (int c = 0; c < 3; ++c) options.background[c] = bg.rgb[c];
-  return options;
+void render_over(const TrainedBackground& background, ViewOptions& views, SessionOptions& session) {
+  if (background.found && views.trained_background)
+    for (int c = 0; c < 3; ++c) views.background[c] = background.rgb[c];
+  for (int c = 0; c < 3; ++c) session.see_through_views.background[c] = views.background[c];
+}
+
+std::string use_trained_background(const SceneBundle& scene, ViewOptions& views, SessionOptions& session) {
+  TrainedBackground background;  // not found: the views keep their colour
+  if (views.trained_background) {
+    TrainedBackgroundOptions o;
+    o.threads = views.threads;
+    background = estimate_trained_background(scene, o);
+  }
+  render_over(background, views, session);
+  return views.trained_background ? background.summary() : std::string();
 }
 
 }  // namespace isegman::segment

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/scene.h"
+#include "segment/session.h"
 #include "segment/views.h"
 
 namespace isegman::segment {
@@ -41,9 +42,13 @@ struct TrainedBackground {
 // (the caller keeps its colour).
 TrainedBackground estimate_trained_background(const SceneBundle& scene, const TrainedBackgroundOptions& options = {});
 
-// `options` with its background set to the estimate's colour when
-// `options.trained_background` is on and an estimate is found; otherwise unchanged.
-// `summary`, when given, receives the estimate's line (empty when none was made).
-ViewOptions with_trained_background(const SceneBundle& scene, ViewOptions options, std::string* summary = nullptr);
+// Renders `views` over `background` when it was found and `views.trained_background` is on,
+// and the views a session's clicks add (session.see_through_views) over the same colour as
+// `views`, found or not.
+void render_over(const TrainedBackground& background, ViewOptions& views, SessionOptions& session);
+
+// The estimate for `scene` (only when `views.trained_background` is on), applied as
+// render_over does; returns its summary line ("" when none was made).
+std::string use_trained_background(const SceneBundle& scene, ViewOptions& views, SessionOptions& session);
 
 }  // namespace isegman::segment

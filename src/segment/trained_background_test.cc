@@ -74,18 +74,21 @@ TEST(TrainedBackground, IsTheColourThePhotosShowWhereTheGaussiansLeaveThemUncove
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(bg.rgb[c], white_ish[c], 0.02);
   EXPECT_GT(bg.agreeing, 0.9);
 
-  // The views a segmentation renders take that colour, unless told not to.
-  ViewOptions vo;
-  std::string line;
-  const ViewOptions over = with_trained_background(b, vo, &line);
+  // The views a segmentation renders take that colour, and the views its clicks add too,
+  // unless told not to.
+  ViewOptions over;
+  SessionOptions session;
+  const std::string line = use_trained_background(b, over, session);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(over.background[c], white_ish[c], 0.02);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(session.see_through_views.background[c], over.background[c]);
   EXPECT_NE(line.find("trained background (0.9"), std::string::npos) << line;
-  vo.trained_background = false;
-  vo.background[0] = 0.25f;
-  const ViewOptions kept = with_trained_background(b, vo, &line);
+  ViewOptions kept;
+  kept.trained_background = false;
+  kept.background[0] = 0.25f;
+  EXPECT_TRUE(use_trained_background(b, kept, session).empty());
   EXPECT_EQ(kept.background[0], 0.25f);
   EXPECT_EQ(kept.background[1], 0.f);
-  EXPECT_TRUE(line.empty());
+  EXPECT_EQ(session.see_through_views.background[0], 0.25f);
 }
 
 TEST(TrainedBackground, IsUnknownWithoutPhotosOrWhereTheyShowARealSurrounding) {
@@ -96,7 +99,9 @@ TEST(TrainedBackground, IsUnknownWithoutPhotosOrWhereTheyShowARealSurrounding) {
   EXPECT_NE(bg.summary().find("no photos"), std::string::npos);
   ViewOptions vo;
   vo.background[2] = 0.5f;
-  EXPECT_EQ(with_trained_background(b, vo).background[2], 0.5f);  // the caller's colour stays
+  SessionOptions session;
+  EXPECT_NE(use_trained_background(b, vo, session).find("no photos"), std::string::npos);
+  EXPECT_EQ(vo.background[2], 0.5f);  // the caller's colour stays
 
   // Uncovered pixels of every colour: nothing the training composited over.
   const float unused[3] = {0, 0, 0};

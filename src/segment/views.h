@@ -48,7 +48,7 @@ struct ViewOptions {
   int threads = 0;
   float background[3] = {0.f, 0.f, 0.f};
   // Render over the colour the scene was trained on where its photos show it, instead of
-  // `background` (trained_background.h: with_trained_background).
+  // `background` (trained_background.h: use_trained_background).
   bool trained_background = true;
   float near_plane = RenderSettings{}.near_plane;  // Gaussians nearer are not rendered (see_through.h)
 };

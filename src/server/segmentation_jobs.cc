@@ -157,11 +157,10 @@ void SegmentationJobs::prepare_job(const JobRunner::Report& report) {
     std::shared_ptr<const SceneBundle> snap = snapshot(fingerprint);
     // SAM sees the views over the colour the scene was trained on (trained_background.h),
     // found once from the photos of the scene as loaded: an edited scene no longer matches them.
-    std::string background_line;
-    const segment::ViewOptions views = segment::with_trained_background(*snap, options_.views, &background_line);
-    if (!background_line.empty()) log_.note(background_line);
+    segment::ViewOptions views = options_.views;
     segment::SessionOptions session = options_.session;
-    for (int c = 0; c < 3; ++c) session.see_through_views.background[c] = views.background[c];
+    const std::string background_line = segment::use_trained_background(*snap, views, session);
+    if (!background_line.empty()) log_.note(background_line);
     seg_ = std::make_unique<Segmentation>(sam_, session, views, options_.settings);
     seg_->set_kept_budget(size_t(options_.kept_bytes));
     set_state("preparing", "rendering views and computing SAM embeddings");
