@@ -2937,6 +2937,450 @@ EvalScene bedroom(const EvalSetOptions& opt) {
   return std::move(s);
 }
 
+// A bathroom filmed by hand from its doorway in a serpentine sweep (27 cameras in three passes of
+// nine across the room: low from left to right, a step nearer and higher from right to left, higher
+// again from left to right; each a little off its path and its aim), with jittered Gaussians,
+// coarse walls and faint floaters, built as a held-out check by a session that had not seen the
+// segmentation method or its tuning: a chrome towel ladder 7 cm off the tiled wall, clicked on a
+// bare lower bar, the white tiles showing between its bars and a bath towel over its top bars; a
+// toilet brush in its holder beside the toilet, the clicked point hidden by the pan from the left
+// of the sweep; a chrome shower riser rail over the bath near the frame's left edge (out of the
+// right views), clicked on its pole (the truth is the shower set: pole, brackets, slider, hand
+// shower and hose); a bar of soap in a dish on the basin; a toilet clicked on its closed lid (the
+// truth is all of it); the right one of two bottles of the same range touching on the bath's rim;
+// a white hand towel on a ring against white tiles; and a golden pothos on a shelf whose vines hang
+// over the shelf's front in front of the wall (the truth is the plant and its pot).
+EvalScene bathroom(const EvalSetOptions& opt) {
+  SceneStart start("bathroom", 401);
+  auto& [s, demo, g, rng, b] = start;
+  const double d = opt.density, sz = 1 / std::sqrt(d);
+  const double wall_y = 1.6, side_x = 2.1, front_y = -1.9, room_h = 2.6, tile_z = 1.2, shower_z = 2.1;
+  auto noise = [&](double a) { return Vec3{1, 1, 1} * (a * rng.normal()); };
+  const Vec3 white{0.93, 0.93, 0.91}, grout{0.70, 0.70, 0.68}, porcelain{0.95, 0.95, 0.94}, chrome{0.70, 0.71, 0.73};
+  const double glaze = 0.04;  // the view dependence of the glazed and acrylic whites (more would speckle them)
+  // Chrome and glazed parts catch the two lights (the ceiling light, the doorway behind the
+  // cameras) as the view moves.
+  const std::vector<std::pair<Vec3, Vec3>> lights = {{{0.2, -0.3, 1}, {0.35, 0.35, 0.33}}, {{0, -1, 0.1}, {0.2, 0.2, 0.2}}};
+  auto chrome_tube = [&](const Vec3& p0, const Vec3& p1, double r, int n, int label) {
+    const Vec3 axis = normalized(p1 - p0);
+    const Vec3 side = normalized(cross(axis, std::abs(axis.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0}));
+    const Vec3 up = cross(side, axis);
+    for (int i = 0; i < n; ++i) {
+      const double t = rng.uniform(), a = rng.range(0, 2 * M_PI);
+      const Vec3 radial = side * std::cos(a) + up * std::sin(a);
+      b.splat(p0 + (p1 - p0) * t + radial * r, radial, 0.004 * sz, chrome + noise(0.02), label, 0.05);
+      gloss(g, radial, lights, 0.8, 0.6);
+    }
+  };
+  // Where the bath, the basket, the toilet and the basin stand.
+  const double bath_x0 = -side_x, bath_x1 = -0.4, bath_y0 = 0.85, bath_z = 0.55, rim = 0.09;
+  const Vec3 basket_c{-0.15, 1.33, 0}, toilet_c{0.30, 1.2, 0}, basin_c{1.78, 1.33, 0.85};
+  const double pan_rx = 0.18, pan_ry = 0.26, pan_h = 0.38;
+  const double mat_x0 = -1.55, mat_x1 = -0.85, mat_y0 = 0.3, mat_y1 = 0.8;
+  // The room: white 15 cm wall tiles with grey grout up to 1.2 m (up to 2.1 m round the bath),
+  // pale sage paint above, a frosted window over the bath; large grey floor tiles; coarse, loose
+  // Gaussians (the flat glazed tiles a little less loose than paint).
+  b.depth_jitter = 0.003;
+  b.shape_jitter = 0.25;
+  const Vec3 sage{0.76, 0.80, 0.74};
+  auto wall_rgb = [&](double u, double z, bool shower) {
+    if (z > (shower ? shower_z : tile_z)) {
+      const double blotch = 0.04 * cell_noise(int(std::floor((u + 20) / 0.4)), int(std::floor(z / 0.4)));
+      return sage * (0.95 + 0.02 * z) + Vec3{1, 1, 1} * blotch + noise(0.02);
+    }
+    return white + Vec3{1, 1, 1} * (0.03 * cell_noise(int((u + 20) / 0.15), int(z / 0.15))) + noise(0.012);
+  };
+  const double win_x0 = -1.45, win_x1 = -0.85, win_z0 = 1.5, win_z1 = 2.05;
+  const double mir_x0 = 1.58, mir_x1 = 1.98, mir_z0 = 1.15, mir_z1 = 1.8;
+  for (int i = 0, n = int(16000 * d); i < n; ++i) {  // the back wall, up past every view
+    const Vec3 p{rng.range(-side_x, side_x), wall_y, rng.range(0, room_h)};
+    if (p.x > win_x0 && p.x < win_x1 && p.z > win_z0 && p.z < win_z1) continue;  // the window
+    if (p.x > mir_x0 && p.x < mir_x1 && p.z > mir_z0 && p.z < mir_z1) continue;  // the mirror
+    b.splat(p, {0, -1, 0}, 0.04 * sz, wall_rgb(p.x, p.z, p.x < bath_x1), -1, 0.03);
+  }
+  b.depth_jitter = 0.001;
+  b.shape_jitter = 0.2;
+  // The grout on the back wall, lines every 15 cm across and up (where wall_rgb's tiles meet),
+  // none over the window and the mirror; 1 cm in front of the tiles' centres, as a trainer
+  // leaves thin dark lines on a bright surface (behind its loose Gaussians they would not show).
+  auto tiled = [&](double x, double z) {
+    return z < (x < bath_x1 ? shower_z : tile_z) + 0.001 && !(x > win_x0 && x < win_x1 && z > win_z0) &&
+           !(x > mir_x0 && x < mir_x1 && z > mir_z0);
+  };
+  for (int row = 1; row * 0.15 < shower_z + 0.001; ++row)
+    for (double x = -side_x; x < side_x; x += 0.02)
+      if (tiled(x, row * 0.15))
+        b.strip({x, wall_y - 0.012, row * 0.15}, {0, -1, 0}, {1, 0, 0}, 0.012, 0.005, grout + noise(0.02), -1, 0.02);
+  for (int col = int(std::ceil((20 - side_x) / 0.15)); col * 0.15 - 20 < side_x; ++col)
+    for (double z = 0.01; z < shower_z; z += 0.02)
+      if (tiled(col * 0.15 - 20, z))
+        b.strip({col * 0.15 - 20, wall_y - 0.012, z}, {0, -1, 0}, {0, 0, 1}, 0.012, 0.005, grout + noise(0.02), -1, 0.02);
+  b.depth_jitter = 0.006;
+  b.shape_jitter = 0.35;
+  b.size_scale = 1.5;  // the side walls only as far forward as any camera sees
+  for (double x : {-side_x, side_x})
+    for (int i = 0, n = int(4000 * d); i < n; ++i) {
+      const Vec3 p{x, rng.range(front_y, wall_y), rng.range(0, room_h)};
+      b.splat(p, {x < 0 ? 1.0 : -1.0, 0, 0}, 0.045 * sz, wall_rgb(p.y, p.z, x < 0 && p.y > bath_y0) * 0.95, -1, 0.03);
+    }
+  b.size_scale = 1.25;
+  b.depth_jitter = 0.004;
+  for (int i = 0, n = int(9000 * d); i < n; ++i) {  // 30 cm floor tiles, none under the bath, the mat, the basket
+    const Vec3 p{rng.range(-side_x, side_x), rng.range(front_y - 0.2, wall_y), 0};
+    if ((p.x < bath_x1 && p.y > bath_y0) || (p.x > mat_x0 && p.x < mat_x1 && p.y > mat_y0 && p.y < mat_y1) ||
+        std::hypot(p.x - basket_c.x, p.y - basket_c.y) < 0.16)
+      continue;
+    const bool joint = std::fmod(p.x + 20, 0.3) < 0.008 || std::fmod(p.y + 20, 0.3) < 0.008;
+    const Vec3 c = Vec3{0.66, 0.65, 0.62} + Vec3{1, 1, 1} * (0.06 * cell_noise(int((p.x + 20) / 0.3), int((p.y + 20) / 0.3)));
+    b.splat(p, {0, 0, 1}, 0.045 * sz, (joint ? Vec3{0.42, 0.41, 0.40} : c) + noise(0.015), -1, 0.05);
+  }
+  b.size_scale = 1.0;
+  b.depth_jitter = 0.002;
+  b.shape_jitter = 0.2;
+  for (int i = 0, n = int(1200 * d); i < n; ++i) {  // the window: frosted glass, brightest at the top, a white frame and bar
+    const double x = rng.range(win_x0, win_x1), z = rng.range(win_z0, win_z1);
+    const bool frame = x < win_x0 + 0.04 || x > win_x1 - 0.04 || z < win_z0 + 0.04 || z > win_z1 - 0.04 || std::abs(z - 1.78) < 0.015;
+    const Vec3 glass = Vec3{0.84, 0.88, 0.92} + Vec3{1, 1, 1} * (0.08 * (z - win_z0));
+    b.splat({x, wall_y + (frame ? -0.01 : 0.02), z}, {0, -1, 0}, 0.02 * sz, (frame ? porcelain : glass) + noise(0.012), -1,
+            frame ? 0.03 : 0.1);
+  }
+  for (int i = 0, n = int(1500 * d); i < n; ++i) {  // the mirror: a soft blur of the room behind the cameras, a thin steel frame
+    const double x = rng.range(mir_x0, mir_x1), z = rng.range(mir_z0, mir_z1);
+    const bool frame = x < mir_x0 + 0.015 || x > mir_x1 - 0.015 || z < mir_z0 + 0.015 || z > mir_z1 - 0.015;
+    Vec3 c = Vec3{0.58, 0.62, 0.63} + Vec3{1, 1, 1} * (0.12 * (z - mir_z0));
+    if (x > 1.7 && x < 1.84 && z < 1.62) c = Vec3{0.70, 0.70, 0.66};  // the doorway behind the cameras, lit
+    b.splat({x, wall_y - 0.012, z}, {0, -1, 0}, 0.014 * sz, (frame ? chrome : c) + noise(0.015), -1, 0.15);
+  }
+  for (int i = 0, n = int(2500 * d); i < n; ++i) {  // a blue-grey bath mat in front of the bath
+    const Vec3 p{rng.range(mat_x0, mat_x1), rng.range(mat_y0, mat_y1), 0.012};
+    b.splat(p, {0, 0, 1}, 0.012 * sz, Vec3{0.44, 0.51, 0.57} + noise(0.03), -1, 0.01);
+  }
+  // The bath: white acrylic, its front and end panels, a rim, a tub sloping to its bottom; a
+  // chrome spout and mixer on the wall.
+  quad(b, {bath_x0, bath_y0, 0}, {bath_x1, bath_y0, 0}, {bath_x1, bath_y0, bath_z}, {bath_x0, bath_y0, bath_z}, {0, -1, 0},
+       int(2500 * d), 0.02 * sz, [&](double, double v) { return porcelain * (0.9 + 0.06 * v) + noise(0.012); }, -1, glaze);
+  quad(b, {bath_x1, bath_y0, 0}, {bath_x1, wall_y, 0}, {bath_x1, wall_y, bath_z}, {bath_x1, bath_y0, bath_z}, {1, 0, 0},
+       int(1000 * d), 0.02 * sz, [&](double, double) { return porcelain * 0.9 + noise(0.012); }, -1, glaze);
+  const double ix0 = bath_x0 + rim, ix1 = bath_x1 - rim, iy0 = bath_y0 + rim, iy1 = wall_y - rim;
+  for (int i = 0, n = int(2000 * d); i < n; ++i) {  // the rim
+    const Vec3 p{rng.range(bath_x0, bath_x1), rng.range(bath_y0, wall_y), bath_z};
+    if (p.x > ix0 && p.x < ix1 && p.y > iy0 && p.y < iy1) continue;
+    b.splat(p, {0, 0, 1}, 0.012 * sz, porcelain + noise(0.012), -1, glaze);
+  }
+  {
+    const double bx0 = ix0 + 0.1, bx1 = ix1 - 0.1, by0 = iy0 + 0.08, by1 = iy1 - 0.06, bz = 0.18, tz = bath_z - 0.01;
+    const Vec3 top[4] = {{ix0, iy0, tz}, {ix1, iy0, tz}, {ix1, iy1, tz}, {ix0, iy1, tz}};
+    const Vec3 bottom[4] = {{bx0, by0, bz}, {bx1, by0, bz}, {bx1, by1, bz}, {bx0, by1, bz}};
+    const Vec3 inside{(ix0 + ix1) / 2, (iy0 + iy1) / 2, bath_z};
+    auto tub = [&](double, double) { return porcelain * 0.88 + noise(0.012); };
+    quad(b, bottom[0], bottom[1], bottom[2], bottom[3], {0, 0, 1}, int(1500 * d), 0.02 * sz, tub, -1, glaze);
+    for (int k = 0; k < 4; ++k) {  // the four sloping sides, facing into the tub
+      const Vec3 &a0 = top[k], &a1 = top[(k + 1) % 4], &c1 = bottom[(k + 1) % 4], &c0 = bottom[k];
+      Vec3 nrm = normalized(cross(a1 - a0, c0 - a0));
+      if (dot(nrm, inside - (a0 + c1) * 0.5) < 0) nrm = -nrm;
+      quad(b, a0, a1, c1, c0, nrm, int(900 * d), 0.02 * sz, tub, -1, glaze);
+    }
+  }
+  const Vec3 mixer{-1.15, wall_y - 0.03, 0.78};
+  cylinder(b, mixer + Vec3{0, 0, -0.035}, 0.03, 0.03, 0.07, 200, 0.004, chrome, -1, true);
+  chrome_tube({-0.95, wall_y, 0.68}, {-0.95, wall_y - 0.16, 0.66}, 0.014, 250, -1);  // the spout
+  // Shampoo and conditioner of one range on the bath's back rim, touching: white bottles, a
+  // navy label on one, a pale blue one on the other, a navy and a white flip cap.
+  b.depth_jitter = 0.001;
+  b.shape_jitter = 0.15;
+  auto bottle = [&](const Vec3& c, double r, double h, const Vec3& band, const Vec3& cap, int label) {
+    for (int i = 0, n = int(900 * d) + 80; i < n; ++i) {
+      if (rng.uniform() < 0.12) {  // its shoulder
+        const double rr = r * std::sqrt(rng.uniform()), a = rng.range(0, 2 * M_PI);
+        b.splat(c + Vec3{rr * std::cos(a), rr * std::sin(a), h}, {0, 0, 1}, 0.005 * sz, porcelain + noise(0.015), label, glaze);
+        continue;
+      }
+      const double a = rng.range(0, 2 * M_PI), z = rng.range(0, h);
+      const Vec3 radial{std::cos(a), std::sin(a), 0};
+      const bool printed = z > 0.3 * h && z < 0.75 * h;
+      b.splat(c + radial * r + Vec3{0, 0, z}, radial, 0.005 * sz, (printed ? band : porcelain) + noise(0.015), label, glaze);
+    }
+    cylinder(b, c + Vec3{0, 0, h}, 0.019, 0.017, 0.028, 160, 0.004, cap, label, true);
+  };
+  const double bottle_r = 0.032, bottle_y = wall_y - 0.046;
+  bottle({-0.78, bottle_y, bath_z}, bottle_r, 0.2, {0.12, 0.20, 0.45}, {0.12, 0.20, 0.45}, -1);
+  const Vec3 cond_c{-0.78 + 2 * bottle_r, bottle_y, bath_z};
+  const int conditioner = add_object(demo, "conditioner", cond_c + Vec3{0, 0, 0.09}, 0.11f);
+  bottle(cond_c, bottle_r, 0.17, {0.50, 0.66, 0.84}, porcelain, conditioner);
+  // The shower set over the bath near the left wall: a chrome riser rail on two wall brackets, a
+  // slider holding a hand shower, its hose hanging in a loop to the mixer.
+  const double riser_x = -1.5, riser_y = wall_y - 0.045, riser_z0 = 1.0, riser_z1 = 2.05;
+  const int shower = add_object(demo, "shower", {riser_x, riser_y, 1.5}, 0.6f);
+  chrome_tube({riser_x, riser_y, riser_z0}, {riser_x, riser_y, riser_z1}, 0.011, int(1400 * d) + 100, shower);
+  for (double z : {riser_z0 + 0.03, riser_z1 - 0.03}) {
+    chrome_tube({riser_x, wall_y, z}, {riser_x, riser_y, z}, 0.013, 120, shower);
+    cylinder(b, {riser_x, riser_y, z - 0.025}, 0.016, 0.016, 0.05, 100, 0.004, chrome * 0.9, shower, false);
+  }
+  for (double z : {riser_z0, riser_z1})  // the end caps
+    ellipsoid(b, {riser_x, riser_y, z}, {0.013, 0.013, 0.01}, 60, 0.004, [&](const Vec3&) { return chrome + noise(0.02); }, shower);
+  const Vec3 slider{riser_x, riser_y, 1.62};
+  cylinder(b, slider - Vec3{0, 0, 0.03}, 0.02, 0.02, 0.06, 200, 0.004, Vec3{0.25, 0.25, 0.27}, shower, false);
+  const Vec3 grip0 = slider + Vec3{0, -0.035, -0.03}, grip1 = grip0 + Vec3{0.0, -0.05, 0.19};
+  chrome_tube(grip0, grip1, 0.014, 400, shower);
+  ellipsoid(b, grip1 + Vec3{0, -0.01, 0.015}, {0.055, 0.055, 0.018}, 700, 0.005,
+            [&](const Vec3& l) { return (l.z < -0.01 ? Vec3{0.35, 0.36, 0.38} : chrome) + noise(0.02); }, shower, 0.1);
+  {
+    const Vec3 a = grip0 - Vec3{0, 0, 0.01}, c = mixer + Vec3{0, -0.035, 0};
+    Vec3 prev = a;
+    for (int k = 1; k <= 40; ++k) {  // the hose: a loop sagging 35 cm below the line between its ends
+      const double t = k / 40.0;
+      const Vec3 p = a + (c - a) * t + Vec3{0, -0.07, -0.35} * std::sin(M_PI * t);
+      tube(b, prev, p, 0.007, 0.007, 45, 0.003, k % 2 ? chrome * 0.9 : chrome * 0.8, shower);
+      prev = p;
+    }
+  }
+  // A wicker laundry basket with a lid between the bath and the toilet.
+  b.depth_jitter = 0.0015;
+  for (int i = 0, n = int(3000 * d); i < n; ++i) {
+    const double a = rng.range(0, 2 * M_PI), z = rng.range(0, 0.52), r = 0.17 + 0.02 * z / 0.52;
+    const bool weave = (int(std::floor(a * 0.17 / 0.02)) + int(std::floor(z / 0.02))) & 1;
+    const Vec3 radial{std::cos(a), std::sin(a), 0};
+    b.splat(basket_c + radial * r + Vec3{0, 0, z}, radial, 0.007 * sz, Vec3{0.70, 0.58, 0.40} * (weave ? 1.0 : 0.85) + noise(0.03), -1,
+            0.03);
+  }
+  cylinder(b, basket_c + Vec3{0, 0, 0.52}, 0.2, 0.19, 0.03, int(1200 * d), 0.008 * sz, {0.66, 0.55, 0.38}, -1, true);
+  // The toilet: a pan narrowing to its foot, a white seat and a closed lid, two chrome hinges, a
+  // cistern against the wall with its lid and a flush button.
+  b.depth_jitter = 0.001;
+  b.shape_jitter = 0.15;
+  const int toilet = add_object(demo, "toilet", toilet_c + Vec3{0, 0.1, 0.4}, 0.45f);
+  const double cis_y0 = 1.42, lid_z = pan_h + 0.035;
+  for (int i = 0, n = int(3500 * d) + 100; i < n; ++i) {  // the pan
+    const double a = rng.range(0, 2 * M_PI), z = rng.range(0, pan_h), f = 0.62 + 0.38 * std::sqrt(z / pan_h);
+    const Vec3 p = toilet_c + Vec3{pan_rx * f * std::cos(a), pan_ry * f * std::sin(a), z};
+    if (p.y > cis_y0 + 0.03) continue;
+    const Vec3 nrm = normalized(Vec3{std::cos(a) / pan_rx, std::sin(a) / pan_ry, -1.2});
+    b.splat(p, normalized(Vec3{nrm.x, nrm.y, z < 0.1 ? 0.0 : -0.3 * std::abs(nrm.z)}), 0.008 * sz, porcelain * 0.97 + noise(0.012),
+            toilet, glaze);
+  }
+  for (int i = 0, n = int(1800 * d) + 100; i < n; ++i) {  // the lid, a low dome, its back cut square at the hinges
+    const double a = rng.range(0, 2 * M_PI), q = std::sqrt(rng.uniform());
+    const Vec3 p = toilet_c + Vec3{pan_rx * q * std::cos(a), (pan_ry - 0.01) * q * std::sin(a) - 0.01, lid_z + 0.012 * (1 - q * q)};
+    if (p.y > cis_y0 - 0.01) continue;
+    b.splat(p, normalized(Vec3{q * std::cos(a) * 0.2, q * std::sin(a) * 0.2, 1}), 0.008 * sz, porcelain + noise(0.012), toilet, glaze);
+    gloss(g, {0, 0, 1}, lights, 0.5, 0.3);
+  }
+  for (int i = 0, n = int(1200 * d) + 60; i < n; ++i) {  // the edges of the seat and the lid, a shaded gap between them
+    const double a = rng.range(0, 2 * M_PI), z = rng.range(pan_h, lid_z);
+    const Vec3 radial{std::cos(a), std::sin(a), 0};
+    const Vec3 p = toilet_c + Vec3{pan_rx * std::cos(a), (pan_ry - 0.01) * std::sin(a) - 0.01, z};
+    if (p.y > cis_y0 - 0.01) continue;
+    const double gap = std::abs(z - (pan_h + 0.018));
+    b.splat(p, radial, 0.004 * sz, (gap < 0.004 ? porcelain * 0.62 : porcelain * 0.93) + noise(0.012), toilet, glaze);
+  }
+  for (double x : {toilet_c.x - 0.08, toilet_c.x + 0.08})
+    chrome_tube({x - 0.02, cis_y0 - 0.02, pan_h + 0.02}, {x + 0.02, cis_y0 - 0.02, pan_h + 0.02}, 0.012, 80, toilet);
+  const Vec3 cis_c{toilet_c.x, (cis_y0 + wall_y) / 2, 0.6};
+  cuboid(b, cis_c, {0.18, (wall_y - cis_y0) / 2, 0.2}, int(3000 * d) + 100, 0.008 * sz,
+         [&](const Vec3&, const Vec3&) { return porcelain * 0.96 + noise(0.012); }, toilet);
+  cuboid(b, cis_c + Vec3{0, -0.005, 0.2}, {0.19, (wall_y - cis_y0) / 2 + 0.005, 0.012}, int(1200 * d) + 60, 0.007 * sz,
+         [&](const Vec3&, const Vec3&) { return porcelain + noise(0.012); }, toilet);
+  cylinder(b, cis_c + Vec3{0, -0.01, 0.212}, 0.026, 0.026, 0.008, 150, 0.004, chrome, toilet, true);
+  // A toilet brush in a brushed-steel holder on the floor beside the pan, right of the cistern.
+  const Vec3 brush_c{0.57, 1.46, 0};
+  const int brush = add_object(demo, "toilet_brush", brush_c + Vec3{0, 0, 0.25}, 0.3f);
+  const Vec3 steel{0.62, 0.63, 0.64};
+  cylinder(b, brush_c, 0.048, 0.052, 0.34, int(1500 * d) + 100, 0.005 * sz, steel, brush, false, 0.3);
+  for (int i = 0; i < 150; ++i) {  // the open top, dark inside
+    const double rr = 0.048 * std::sqrt(rng.uniform()), a = rng.range(0, 2 * M_PI);
+    b.splat(brush_c + Vec3{rr * std::cos(a), rr * std::sin(a), 0.33}, {0, 0, 1}, 0.005, Vec3{0.15, 0.15, 0.16} + noise(0.02), brush,
+            0.02);
+  }
+  tube(b, brush_c + Vec3{0, 0, 0.3}, brush_c + Vec3{0, 0, 0.56}, 0.009, 0.009, 300, 0.004, steel * 1.1, brush);
+  ellipsoid(b, brush_c + Vec3{0, 0, 0.565}, {0.016, 0.016, 0.012}, 80, 0.004, [&](const Vec3&) { return steel + noise(0.02); }, brush);
+  // A chrome towel ladder 7 cm off the wall between the toilet and the basin: two uprights on
+  // four brackets, twelve bars; a teal bath towel folded over its two top bars.
+  const double rail_x0 = 0.70, rail_x1 = 1.18, rail_y = wall_y - 0.07, rail_z0 = 0.3, rail_z1 = 1.5;
+  const int rail = add_object(demo, "towel_rail", {(rail_x0 + rail_x1) / 2, rail_y, (rail_z0 + rail_z1) / 2}, 0.65f);
+  for (double x : {rail_x0, rail_x1}) {
+    chrome_tube({x, rail_y, rail_z0}, {x, rail_y, rail_z1}, 0.016, int(1200 * d) + 100, rail);
+    for (double z : {rail_z0, rail_z1})
+      ellipsoid(b, {x, rail_y, z}, {0.017, 0.017, 0.012}, 60, 0.004, [&](const Vec3&) { return chrome + noise(0.02); }, rail);
+    for (double z : {rail_z0 + 0.1, rail_z1 - 0.1}) {
+      chrome_tube({x, wall_y, z}, {x, rail_y, z}, 0.01, 100, rail);
+      chrome_tube({x, wall_y, z}, {x, wall_y - 0.012, z}, 0.028, 80, rail);  // the wall rose
+    }
+  }
+  for (double z = rail_z0 + 0.05; z < rail_z1; z += 0.1)
+    chrome_tube({rail_x0, rail_y, z}, {rail_x1, rail_y, z}, 0.011, int(300 * d) + 40, rail);
+  {
+    const Vec3 teal{0.16, 0.44, 0.47};
+    const double tx0 = rail_x0 + 0.035, tx1 = rail_x1 - 0.035, fold_z = rail_z1 - 0.05, front_z = 0.98, back_z = 1.1;
+    for (int i = 0, n = int(4000 * d) + 100; i < n; ++i) {
+      const double x = rng.range(tx0, tx1), pick = rng.uniform();
+      const Vec3 c = teal * (std::fmod(x - tx0, 0.06) < 0.03 ? 1.0 : 0.92) + noise(0.03);  // the folds, lit and shaded
+      if (pick < 0.6) {  // the front half, hanging in soft folds
+        const double z = rng.range(front_z, fold_z);
+        const bool hem = z < front_z + 0.035;
+        b.splat({x, rail_y - 0.026 + 0.008 * std::sin((x - tx0) * 52), z}, {0, -1, 0}, 0.01 * sz, hem ? teal * 1.2 + noise(0.02) : c, -1,
+                0.01);
+      } else if (pick < 0.85) {  // over the top bar
+        const double t = rng.range(0, M_PI);
+        const Vec3 r{0, -std::cos(t), std::sin(t)};
+        b.splat(Vec3{x, rail_y, fold_z} + r * 0.026, r, 0.01 * sz, c, -1, 0.01);
+      } else {  // the back half, behind the bars
+        b.splat({x, rail_y + 0.026, rng.range(back_z, fold_z)}, {0, 1, 0}, 0.01 * sz, c, -1, 0.01);
+      }
+    }
+  }
+  // A white hand towel through a chrome ring on the tiles right of the ladder.
+  const Vec3 ring_c{1.36, wall_y - 0.055, 1.08};
+  chrome_tube({ring_c.x, wall_y, 1.15}, {ring_c.x, ring_c.y, 1.15}, 0.01, 100, -1);
+  for (int k = 0; k < 24; ++k) {
+    const double a0 = 2 * M_PI * k / 24, a1 = 2 * M_PI * (k + 1) / 24;
+    chrome_tube(ring_c + Vec3{0.065 * std::cos(a0), 0, 0.065 * std::sin(a0)}, ring_c + Vec3{0.065 * std::cos(a1), 0, 0.065 * std::sin(a1)},
+                0.005, 20, -1);
+  }
+  const int towel = add_object(demo, "hand_towel", {ring_c.x, ring_c.y - 0.01, 0.8}, 0.3f);
+  const Vec3 terry{0.94, 0.94, 0.92};
+  for (int i = 0, n = int(3000 * d) + 100; i < n; ++i) {
+    const double v = rng.uniform();  // from the ring down
+    const bool back = rng.uniform() < 0.25;
+    const double half = 0.13 * (0.4 + 0.6 * std::min(1.0, v * 4)), x = rng.range(-half, half);
+    const double z = ring_c.z - 0.065 - v * (back ? 0.36 : 0.46);
+    const double y = back ? ring_c.y + 0.012 : ring_c.y - 0.014 + 0.007 * std::sin(x * 60) - 0.01 * (1 - v);
+    const bool band = v > 0.84 && v < 0.88;
+    b.splat(ring_c + Vec3{x, y - ring_c.y, z - ring_c.z}, {0, back ? 1.0 : -1.0, 0}, 0.009 * sz,
+            (band ? Vec3{0.84, 0.83, 0.79} : terry) + noise(0.025), towel, 0.01);
+  }
+  // The basin on its pedestal: a ceramic deck round an oval bowl, an apron and sides, a chrome
+  // mixer tap; a soap dish on the deck behind the bowl, a bar of soap on it.
+  const double bx0 = basin_c.x - 0.22, bx1 = basin_c.x + 0.22, by0 = 1.15, bowl_rx = 0.17, bowl_ry = 0.13;
+  const Vec3 bowl_c{basin_c.x, 1.31, basin_c.z};
+  cylinder(b, {basin_c.x, 1.47, 0}, 0.085, 0.075, 0.72, int(1500 * d), 0.008 * sz, porcelain * 0.95, -1, false);
+  for (int i = 0, n = int(2000 * d); i < n; ++i) {  // the deck
+    const Vec3 p{rng.range(bx0, bx1), rng.range(by0, wall_y), basin_c.z};
+    if (std::hypot((p.x - bowl_c.x) / bowl_rx, (p.y - bowl_c.y) / bowl_ry) < 1) continue;
+    b.splat(p, {0, 0, 1}, 0.008 * sz, porcelain + noise(0.012), -1, glaze);
+  }
+  for (int i = 0, n = int(1500 * d); i < n; ++i) {  // the bowl
+    const double a = rng.range(0, 2 * M_PI), w = rng.uniform(), f = std::sqrt(1 - w * w);
+    const Vec3 p = bowl_c + Vec3{bowl_rx * f * std::cos(a), bowl_ry * f * std::sin(a), -0.12 * w};
+    const bool drain = f < 0.12;
+    b.splat(p, normalized(Vec3{-f * std::cos(a) / bowl_rx, -f * std::sin(a) / bowl_ry, w / 0.12}), 0.007 * sz,
+            drain ? chrome * 0.6 : porcelain * 0.9 + noise(0.012), -1, glaze);
+  }
+  quad(b, {bx0, by0, 0.7}, {bx1, by0, 0.7}, {bx1, by0, basin_c.z}, {bx0, by0, basin_c.z}, {0, -1, 0}, int(800 * d), 0.008 * sz,
+       [&](double, double) { return porcelain * 0.93 + noise(0.012); }, -1, glaze);
+  for (double x : {bx0, bx1})
+    quad(b, {x, by0, 0.7}, {x, wall_y, 0.7}, {x, wall_y, basin_c.z}, {x, by0, basin_c.z}, {x < basin_c.x ? -1.0 : 1.0, 0, 0},
+         int(600 * d), 0.008 * sz, [&](double, double) { return porcelain * 0.9 + noise(0.012); }, -1, glaze);
+  chrome_tube({basin_c.x, 1.54, basin_c.z}, {basin_c.x, 1.54, basin_c.z + 0.14}, 0.018, 300, -1);
+  chrome_tube({basin_c.x, 1.54, basin_c.z + 0.13}, {basin_c.x, 1.43, basin_c.z + 0.12}, 0.012, 200, -1);
+  chrome_tube({basin_c.x, 1.55, basin_c.z + 0.15}, {basin_c.x, 1.6, basin_c.z + 0.17}, 0.006, 60, -1);  // the lever
+  const Vec3 dish_c{1.635, 1.545, basin_c.z};
+  cuboid(b, dish_c + Vec3{0, 0, 0.004}, {0.055, 0.04, 0.004}, 300, 0.005, one_colour(porcelain * 0.92), -1);
+  const Vec3 soap_c = dish_c + Vec3{0, 0, 0.022};
+  const int soap = add_object(demo, "soap", soap_c, 0.05f);
+  ellipsoid(b, soap_c, {0.045, 0.03, 0.014}, int(700 * d) + 60, 0.005 * sz,
+            [&](const Vec3&) { return Vec3{0.76, 0.68, 0.84} + noise(0.015); }, soap, 0.04);
+  // A small steel pedal bin under the hand towel.
+  cylinder(b, {1.36, 1.36, 0}, 0.11, 0.11, 0.3, int(1200 * d), 0.007 * sz, Vec3{0.52, 0.53, 0.55}, -1, true);
+  // An oak shelf on the wall over the cistern: a candle in an amber jar, a golden pothos in a
+  // terracotta pot whose vines hang over the shelf's front, 20 cm off the wall.
+  const double shelf_x0 = 0.02, shelf_x1 = 0.58, shelf_y0 = 1.4, shelf_z = 1.38;
+  const Vec3 oak{0.64, 0.47, 0.30};
+  cuboid(b, {(shelf_x0 + shelf_x1) / 2, (shelf_y0 + wall_y) / 2, shelf_z - 0.0125},
+         {(shelf_x1 - shelf_x0) / 2, (wall_y - shelf_y0) / 2, 0.0125}, int(1200 * d), 0.008 * sz,
+         [&](const Vec3&, const Vec3&) { return oak + noise(0.02); }, -1);
+  quad(b, {shelf_x0, shelf_y0, shelf_z - 0.025}, {shelf_x1, shelf_y0, shelf_z - 0.025}, {shelf_x1, wall_y, shelf_z - 0.025},
+       {shelf_x0, wall_y, shelf_z - 0.025}, {0, 0, -1}, int(500 * d), 0.008 * sz, [&](double, double) { return oak * 0.7 + noise(0.02); },
+       -1, 0.02);
+  cylinder(b, {0.1, 1.5, shelf_z}, 0.04, 0.04, 0.085, 400, 0.005, Vec3{0.72, 0.45, 0.20}, -1, true);
+  const Vec3 pot_c{0.36, 1.5, shelf_z};
+  const int pothos = add_object(demo, "pothos", pot_c + Vec3{0, -0.05, 0.0}, 0.45f);
+  cylinder(b, pot_c, 0.058, 0.075, 0.11, int(1200 * d) + 100, 0.006 * sz, Vec3{0.72, 0.40, 0.28}, pothos, false, 0.09);
+  for (int i = 0; i < 200; ++i) {  // the soil
+    const double rr = 0.07 * std::sqrt(rng.uniform()), a = rng.range(0, 2 * M_PI);
+    b.splat(pot_c + Vec3{rr * std::cos(a), rr * std::sin(a), 0.1}, {0, 0, 1}, 0.006, Vec3{0.22, 0.16, 0.11} + noise(0.02), pothos, 0.01);
+  }
+  const Vec3 leaf_lo{0.18, 0.38, 0.10}, leaf_hi{0.46, 0.62, 0.22};
+  Leaves crown;
+  crown.radii = {0.14, 0.1, 0.07};
+  crown.tilt = 0.7;
+  crown.spacing = 0.011;
+  crown.length = 0.011;
+  crown.width = 0.013;
+  crown.lo = leaf_lo;
+  crown.hi = leaf_hi;
+  leaves(b, pot_c + Vec3{0, -0.01, 0.17}, crown, int(40 * d) + 10, pothos);
+  auto leaf = [&](const Vec3& at, const Vec3& dir, const Vec3& nrm) {  // a heart-shaped leaf of four strips from its stalk
+    const Vec3 col{rng.range(leaf_lo.x, leaf_hi.x), rng.range(leaf_lo.y, leaf_hi.y), rng.range(leaf_lo.z, leaf_hi.z)};
+    for (int k = 0; k < 4; ++k)
+      b.strip(at + dir * (0.012 * k), nrm, dir, 0.011, 0.014 * (k == 0 ? 0.8 : 1 - 0.2 * (k - 1)), col, pothos, 0.05);
+  };
+  Vec3 clicked_leaf;
+  const double vine_x[4] = {0.24, 0.31, 0.40, 0.47}, vine_len[4] = {0.3, 0.46, 0.38, 0.22};
+  for (int v = 0; v < 4; ++v) {
+    // Over the pot's rim, over the shelf's front edge, then down with a little sway.
+    std::vector<Vec3> path = {{vine_x[v], pot_c.y - 0.05, shelf_z + 0.11}, {vine_x[v], shelf_y0 - 0.01, shelf_z + 0.01}};
+    for (double t = 0.05; t <= vine_len[v] + 1e-9; t += 0.05)
+      path.push_back({vine_x[v] + 0.03 * std::sin(t * 9 + v), shelf_y0 - 0.015 - 0.03 * t, shelf_z - t});
+    for (size_t k = 1; k < path.size(); ++k) {
+      tube(b, path[k - 1], path[k], 0.0025, 0.0025, 30, 0.002, Vec3{0.40, 0.52, 0.22}, pothos);
+      const double side = k % 2 ? 1.0 : -1.0;
+      const Vec3 dir = normalized(Vec3{side * 0.8, -0.3, -0.6});
+      const Vec3 at = path[k] + Vec3{side * 0.008, -0.006, 0};
+      leaf(at, dir, normalized(Vec3{side * 0.2, -1, 0.25}));
+      if (v == 1 && k == 4) clicked_leaf = at + dir * 0.018 + Vec3{0, -0.003, 0};
+    }
+  }
+  // Floaters: faint blobs in the air a trainer leaves, none by the cameras (all 1 m or more from them).
+  b.depth_jitter = 0;
+  b.shape_jitter = 0;
+  for (int i = 0, n = int(60 * d); i < n; ++i) {  // fewer than in a larger room: as many in its smaller air would fog it
+    const Vec3 p{rng.range(-2.0, 2.0), rng.range(0.1, 1.5), rng.range(0.1, 2.4)};
+    b.floater(p, rng.range(0.015, 0.05) * sz, white * rng.range(0.6, 1.05), rng.range(0.05, 0.3));
+  }
+  // The capture: a serpentine sweep from the doorway, 27 cameras in three passes of nine across
+  // the room (each pass 1.7 m wide, at 1.15, 1.45 and 1.75 m, the middle one a step nearer), each
+  // turned a little towards the side it is on, held by hand (their own random stream).
+  const Vec3 focus{0.0, 1.3, 0.85};
+  SplitMix64 hand(409);
+  for (int id = 0; id < 27; ++id) {
+    const int pass = id / 9, k = id % 9;
+    const double x = -0.85 + 1.7 * (pass == 1 ? 8 - k : k) / 8.0;
+    const Vec3 wobble{hand.range(-0.04, 0.04), hand.range(-0.04, 0.04), hand.range(-0.04, 0.04)};
+    const Vec3 aim{hand.range(-0.1, 0.1), 0, hand.range(-0.06, 0.06)};
+    const Vec3 eye = Vec3{x, pass == 1 ? -0.8 : -0.95, 1.15 + 0.3 * pass} + wobble;
+    demo.bundle.cameras.push_back(
+        named(Camera::look_at(eye, focus + Vec3{0.3 * x, 0, 0} + aim, {0, 0, 1}, opt.width, opt.height, 68.0), id, "sweep"));
+  }
+  add_task(s, "towel_rail",
+           "chrome towel ladder 7 cm off the tiled wall clicked on a bare lower bar, the white tiles showing between its bars, "
+           "a bath towel over its top bars (truth: the ladder: uprights, bars, brackets, not the towel)",
+           rail, {(rail_x0 + rail_x1) / 2, rail_y - 0.011, rail_z0 + 0.35}, 4);
+  add_task(s, "toilet_brush",
+           "toilet brush in its holder beside the toilet, the clicked point hidden by the pan from the left of the sweep (truth: "
+           "the holder and the brush)",
+           brush, brush_c + Vec3{0.052 * std::cos(-1.9), 0.052 * std::sin(-1.9), 0.2}, 9);
+  add_task(s, "shower",
+           "thin chrome shower riser rail over the bath near the frame's left edge, out of the right views, clicked on its pole "
+           "(truth: the shower set: pole, brackets, slider, hand shower, hose)",
+           shower, {riser_x, riser_y - 0.011, 1.4}, 13);
+  add_task(s, "soap", "tiny bar of soap in a dish on the basin's deck (truth: the soap, not the dish)", soap,
+           soap_c + Vec3{0, 0, 0.014}, 22);
+  add_task(s, "toilet",
+           "compound object: a toilet clicked on its closed lid (truth: the whole toilet: pan, seat, lid, hinges, cistern and its "
+           "lid, flush button)",
+           toilet, toilet_c + Vec3{0, -0.05, lid_z + 0.011}, 22);
+  add_task(s, "conditioner",
+           "the right one of two bottles of the same range touching on the bath's rim (truth: that bottle only)", conditioner,
+           cond_c + Vec3{0, -bottle_r, 0.08}, 11);
+  add_task(s, "hand_towel", "white hand towel on a chrome ring against white tiles of nearly its colour (truth: the towel, not the ring)",
+           towel, {ring_c.x, ring_c.y - 0.02, 0.8}, 16);
+  add_task(s, "pothos",
+           "golden pothos on a shelf clicked on a leaf of a vine hanging over the shelf's front, the wall showing between its "
+           "leaves (truth: the plant and its pot)",
+           pothos, clicked_leaf, 20);
+  return std::move(s);
+}
+
 EvalScene orbit_demo(const EvalSetOptions& opt) {
   EvalScene s;
   s.name = "orbit";
@@ -3056,6 +3500,7 @@ std::vector<EvalScene> make_eval_scenes(const EvalSetOptions& opt) {
   out.push_back(office(opt));
   out.push_back(garage(opt));
   out.push_back(bedroom(opt));
+  out.push_back(bathroom(opt));
   if (opt.camera_factor > 1)
     for (EvalScene& s : out) {
       densify_cameras(s.scene.bundle.cameras, opt.camera_factor);
