@@ -257,8 +257,8 @@ void BM_RealSecondClick(benchmark::State& state) {
 BENCHMARK(BM_RealSecondClick)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 // A click on an inner frond, whose nearer fronds SAM's mask at the click holds: with the
-// enclosure test (1) the click checks whether they stand apart in depth (they run on to the
-// clicked frond, so no render or encoding without them follows; see_through.h); without it (0)
+// enclosure test (1) the click checks whether they stand apart in 3D from the clicked frond
+// (they touch it, so no render or encoding without them follows; see_through.h); without it (0)
 // it does not. What the test costs a click that is not inside an enclosure.
 void BM_FrondClick(benchmark::State& state) {
   segment::SessionOptions so;

@@ -89,9 +89,10 @@ TEST_F(FernFixture, OneClickOnThePlantLeavesOutWhatShowsBehindItsFronds) {
 
 // image010 (300, 170) lands on an inner frond: the fronds nearer than it, flanked by it,
 // are all in SAM's mask at the click. They are no enclosure around something smaller (a cone
-// in a cage): they run on in depth to the clicked frond, and rendered without them SAM there
-// masks 45 % of that mask (the rest of the plant), above the quarter an enclosure leaves.
-// Either test alone keeps the click in its view; SAM's alone at a half would not.
+// in a cage): they touch the clicked frond in 3D (14 % of the Gaussians at its depth around
+// the click), and rendered without them SAM there masks 45 % of that mask (the rest of the
+// plant), above the quarter an enclosure leaves. Either test alone keeps the click in its
+// view; SAM's alone at a half would not.
 TEST_F(FernFixture, AClickAmongThePlantsFrondsDoesNotSeeThroughThem) {
   const int c = camera("image010");
   ASSERT_GE(c, 0);
@@ -107,16 +108,20 @@ TEST_F(FernFixture, AClickAmongThePlantsFrondsDoesNotSeeThroughThem) {
     for (bool s : session->selection()) f.selected += s;
     return f;
   };
-  SessionOptions sam_alone, at_half;  // no depth test; and an enclosure below half of the mask
-  sam_alone.see_through_options.min_enclosure_gap = at_half.see_through_options.min_enclosure_gap = 0;
-  at_half.see_through_options.min_peeled_share = 0.5;
-  const Figures ours = click(SessionOptions()), by_sam = click(sam_alone), half = click(at_half);
+  // No 3D test; an enclosure below half of the mask without it, and with it.
+  SessionOptions sam_alone, at_half, at_half_3d;
+  sam_alone.see_through_options.max_enclosure_touch = at_half.see_through_options.max_enclosure_touch = 1;
+  at_half.see_through_options.min_peeled_share = at_half_3d.see_through_options.min_peeled_share = 0.5;
+  const Figures ours = click(SessionOptions()), by_sam = click(sam_alone), half = click(at_half),
+                half_3d = click(at_half_3d);
   std::printf("[ fern plant ] click (300, 170): %zu Gaussians, %d peeled view(s); by SAM alone: %zu, %d; at half: %zu, "
-              "%d\n",
-              ours.selected, ours.peeled, by_sam.selected, by_sam.peeled, half.selected, half.peeled);
+              "%d; at half with the 3D test: %zu, %d\n",
+              ours.selected, ours.peeled, by_sam.selected, by_sam.peeled, half.selected, half.peeled, half_3d.selected,
+              half_3d.peeled);
   EXPECT_EQ(ours.peeled, 0);
   EXPECT_EQ(by_sam.peeled, 0);
-  EXPECT_EQ(half.peeled, 1);         // the margin SAM's test has here
+  EXPECT_EQ(half.peeled, 1);  // the margin SAM's test has here
+  EXPECT_EQ(half_3d.peeled, 0);  // the 3D test's
   EXPECT_GT(ours.selected, 30000u);  // the plant (44,111), not an inner frond alone
 }
 

@@ -1,8 +1,12 @@
 #include "segment/see_through.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <utility>
+
+#include "core/parallel.h"
+#include "segment/whole_islands.h"
 
 namespace isegman::segment {
 
@@ -126,9 +130,40 @@ Occluders find_occluders(const GaussianScene& scene, const PreparedFrame& frame,
   // Just behind the occluders (whose Gaussians have some thickness), well before the
   // clicked surface, so the object's own nearer parts stay.
   out.cut = nearest_behind + 0.3 * (surface_front - nearest_behind);
-  out.clearance = (surface_front - nearest_behind) / surface_front;
   out.found = true;
   return out;
+}
+
+double enclosure_contact(const GaussianScene& scene, const CentreIndex& index, const Camera& camera,
+                         const std::vector<uint32_t>& shown, const Occluders& occ, double x, double y,
+                         const SeeThroughOptions& o, int threads) {
+  std::vector<bool> nearer(scene.size(), false);
+  std::vector<uint32_t> there;
+  const double reach = o.window * std::max(camera.width, camera.height);
+  for (uint32_t j : shown) {
+    const Vec3 p = scene.position(j);
+    const double z = camera.world_to_camera(p).z;
+    if (z < occ.cut) {
+      nearer[j] = true;
+      continue;
+    }
+    double u = 0, v = 0;
+    if (z <= occ.surface * (1 + o.band) && camera.project(p, u, v) && std::hypot(u - x, v - y) <= reach)
+      there.push_back(j);
+  }
+  if (there.empty()) return 0.0;
+  const TouchingGaussians touching(scene, index, nearer, o.link_sigmas, threads);
+  std::atomic<size_t> touched{0};
+  parallel_chunks(there.size(), 256, threads, [&](size_t, size_t begin, size_t end) {
+    size_t n = 0;
+    for (size_t i = begin; i < end; ++i) {
+      bool any = false;
+      touching.for_each(there[i], [&](uint32_t) { any = true; });
+      n += any;
+    }
+    touched += n;
+  });
+  return double(touched) / double(there.size());
 }
 
 }  // namespace isegman::segment

@@ -96,5 +96,34 @@ TEST(SeeThrough, AClickedPixelHalfCoveredByTheNearerThingIsNoGap) {
   EXPECT_TRUE(find_occluders(s.scene, prepare_frame(s.scene, kCamera), x, 80.5, any_weight).found);
 }
 
+TEST(SeeThrough, BarsStandApartFromWhatTheClickShowsWhereNearerLeavesTouchIt) {
+  // Every Gaussian is in SAM's mask at the click, which holds the nearer things: bars at 3.8
+  // before a surface at 4.0 (an enclosure), and foliage of layers every 0.02 from 3.8 to 4.0
+  // whose splats touch the next layer's (a plant's nearer leaves running on into the clicked
+  // ones). The cut falls at 3.91 in both.
+  auto contact = [](const Splats& s, double cut) {
+    std::vector<uint32_t> shown(s.scene.size());
+    for (uint32_t j = 0; j < shown.size(); ++j) shown[j] = j;
+    Occluders occ;
+    occ.found = true;
+    occ.cut = cut;
+    occ.surface = 4.0;
+    const CentreIndex index(s.scene, 1);
+    return enclosure_contact(s.scene, index, kCamera, shown, occ, 80.5, 80.5, SeeThroughOptions(), 1);
+  };
+  Splats bars;
+  bars.sheet(-1, 1, -1, 1, 4.0);
+  for (double x = -0.9; x <= 0.9; x += 0.3) bars.sheet(x, x + 0.08, -1, 1, 3.8);
+  Splats leaves;
+  for (int k = 0; k <= 10; ++k) leaves.sheet(-1, 1, -1, 1, 3.8 + 0.02 * k);
+  const double apart = contact(bars, 3.91), touching = contact(leaves, 3.91);
+  EXPECT_EQ(apart, 0.0);
+  // The layers at 3.92-4.00 lie at the clicked depth; the one at 3.92 touches the cut-away 3.90.
+  EXPECT_NEAR(touching, 0.2, 0.02);
+  EXPECT_GT(touching, SeeThroughOptions().max_enclosure_touch);
+  // Nothing at the clicked depth around the click: no contact to speak of.
+  EXPECT_EQ(contact(bars, 4.5), 0.0);
+}
+
 }  // namespace
 }  // namespace isegman::segment

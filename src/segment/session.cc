@@ -407,13 +407,19 @@ int Session::see_through_view(int view, const Click& c) {
     if (selection_share_nearer(view, occ.cut, covered) >= so.max_selection_peeled) return view;
   }
   // Nor where SAM already takes them in with the clicked surface (the near leaves of the same
-  // plant): they are part of what the user means. Unless they stand apart in depth and,
-  // rendered without them, SAM at the click segments far less than that mask: then the mask
-  // was an enclosure (a cage's mesh, a playpen's bars) around the smaller thing clicked. That
-  // test, and the next, cost a render and an encoding.
+  // plant): they are part of what the user means. Unless they stand apart in 3D from what the
+  // click shows and, rendered without them, SAM at the click segments far less than that
+  // mask: then the mask was an enclosure (a cage's mesh, a playpen's bars) around the smaller
+  // thing clicked. That test, and the next, cost a render and an encoding.
   const Mask at_click = sam_->decode(base.embedding, {c}).mask();
   const bool enclosure = holds_most([&](uint32_t p) { return p < at_click.data.size() && at_click.data[p]; });
-  if (enclosure && (so.min_peeled_share <= 0 || occ.clearance < so.gap + so.min_enclosure_gap)) return view;
+  if (enclosure) {
+    if (so.min_peeled_share <= 0) return view;
+    const std::vector<uint32_t> shown = masked_votes(base.frame, to_image(at_click), options_.threads).index;
+    if (enclosure_contact(scene_, neighbours(), base.camera, shown, occ, c.x, c.y, so, options_.threads) >
+        so.max_enclosure_touch)
+      return view;
+  }
   SegmentView peeled = build_view(scene_, base.camera, -1, *sam_, vo);
   const double behind = double(mask_area(sam_->decode(peeled.embedding, {c}).mask()));
   if (enclosure && behind >= so.min_peeled_share * double(mask_area(at_click))) return view;
