@@ -410,7 +410,7 @@ int Session::see_through_view(int view, const Click& c) {
   // plant): they are part of what the user means. Unless they stand apart in 3D from what the
   // click shows and, rendered without them, SAM at the click segments far less than that
   // mask: then the mask was an enclosure (a cage's mesh, a playpen's bars) around the smaller
-  // thing clicked. That test, and the next, cost a render and an encoding.
+  // thing clicked. The 3D test comes first: SAM's, and the next, cost a render and an encoding.
   const Mask at_click = sam_->decode(base.embedding, {c}).mask();
   const bool enclosure = holds_most([&](uint32_t p) { return p < at_click.data.size() && at_click.data[p]; });
   if (enclosure) {
