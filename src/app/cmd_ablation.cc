@@ -141,6 +141,7 @@ int run_eval_ablation(const Args& args) {
       {"- negative clicks only remove", [](segment::SessionOptions& o) { o.negative_only_removes = false; }},
       {"- negative clicks one by one", [](segment::SessionOptions& o) { o.negatives_one_by_one = false; }},
       {"- no cut through the scene", [](segment::SessionOptions& o) { o.see_through_options.max_peeled_view_share = 1; }},
+      {"- uncertain object", [](segment::SessionOptions& o) { o.min_uncertain_object_score = 2; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

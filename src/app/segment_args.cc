@@ -101,6 +101,8 @@ const char* const kSegmentOptionsHelp =
     "  --no-object-prior             keep SAM's choice in the clicked view even when it runs past three\n"
     "                                image borders (or two, over 30 % of the image) and a candidate\n"
     "                                inside the frame holds the click\n"
+    "  --no-uncertain-object         the object prior takes only a candidate SAM scores >= 0.75 (default:\n"
+    "                                where none does, the best scored from 0.3 on)\n"
     "  --no-whole-neutral            let a view whose mask is a part of a larger candidate vote against\n"
     "                                the rest of that candidate (the vote keeps the intersection)\n"
     "  --selection-prompts N         rounds prompting views no click reached (default 2, 0 = off)\n"
@@ -136,7 +138,7 @@ const std::set<std::string>& segment_value_flags() {
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "no-trained-background",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-see-through-enclosures", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "no-far-behind-check", "keep-whole-islands", "keep-apart-islands", "keep-seen-behind", "keep-behind-click", "keep-behind-pieces", "part-votes-against", "no-attached-parts", "wide-views-vouch", "keep-beyond-part", "no-negative-islands",
-                                          "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
+                                          "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-uncertain-object", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives", "sam-all-clicks", "no-negative-granularity", "negatives-may-add",
                                           "negatives-together"};
   return f;
@@ -195,6 +197,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   if (args.has("no-part-growth")) segment::disable_part_growth(s.session);
   s.session.whole_neutral = !args.has("no-whole-neutral");
   s.session.object_prior = !args.has("no-object-prior");
+  if (args.has("no-uncertain-object")) s.session.min_uncertain_object_score = 2;
   s.session.propagation.hidden_fallback = args.has("hidden-fallback");
   if (args.has("no-depth-agreement")) s.session.propagation.depth_agreement = 0;
   s.session.interior_anchor.enabled = args.has("interior-anchor");

@@ -469,6 +469,26 @@ TEST(HardCases, AClickOnAPaleSkullOnAPaleWallSelectsTheSkullNotTheWall) {
   EXPECT_GT(ours.iou, without.iou + 0.2);
 }
 
+TEST(HardCases, AClickSamIsUnsureOfAsAnObjectButSureOfAsTheRoomSelectsTheObject) {
+  if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
+  // The bathroom's conditioner, a small bottle on the bath's rim, clicked (drawn click 2) near
+  // its cap. SAM's choice is the room (past three borders, 0.99) and its one candidate inside
+  // the frame, the bottle with its neighbour, scores 0.49: under the object prior's 0.75, so
+  // the whole room was selected. The best scored candidate inside the frame is taken instead
+  // (what stays wrong is the neighbour and the rim under them, which SAM masks with it).
+  SessionOptions sure_only;
+  sure_only.min_uncertain_object_score = 2;
+  const Outcome ours = run("bathroom/conditioner", SessionOptions(), {}, kAblation, 2);
+  const Outcome room = run("bathroom/conditioner", sure_only, {}, kAblation, 2);
+  std::printf("[ hard ] bathroom/conditioner, drawn click 2: IoU %.1f%% (%zu selected, %zu wall or floor); only "
+              "candidates SAM is sure of %.1f%% (%zu selected, %zu wall or floor)\n",
+              100 * ours.iou, ours.selected, ours.scenery, 100 * room.iou, room.selected, room.scenery);
+  EXPECT_GT(room.scenery, room.selected / 2);
+  EXPECT_LT(ours.selected, room.selected / 20);
+  EXPECT_LT(ours.scenery, room.scenery / 20);
+  EXPECT_GT(ours.iou, room.iou + 0.1);
+}
+
 TEST(HardCases, ARugOnTheFloorIsSelectedWithoutTheFloor) {
   if (!sam_or_null()) GTEST_SKIP() << "SAM model files absent (run scripts/setup.sh)";
   // In most views the click reaches, SAM's choice at the rug is the floor (past three image

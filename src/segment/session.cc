@@ -128,23 +128,35 @@ bool holds_positives(const Mask& mask, const std::vector<Click>& clicks) {
 // choice, unless it looks like the surroundings (the wall or floor around the click: a pale
 // skull on a pale wall, a rug on the floor) while another candidate holding every positive
 // click stays off all borders but one (an object the click picks out); then the largest such
-// candidate. A click that means the surroundings still gets them from a second view or
-// click; one that means the object gets it at once.
+// candidate scoring min_score. Where none scores that, SAM is unsure of the object (a small
+// bottle clicked at its rim, a white towel on white tiles) but not of the room: the best
+// scored such candidate from min_uncertain_score on is still likelier what was clicked.
+// A click that means the surroundings still gets them from a second view or click; one
+// that means the object gets it at once.
 int object_candidate(const models::SegmentResult& r, const std::vector<Click>& clicks, double min_score,
-                     double min_surroundings_share) {
+                     double min_uncertain_score, double min_surroundings_share) {
   const bool positive = std::any_of(clicks.begin(), clicks.end(), [](const Click& k) { return k.label == 1; });
   if (!positive || r.candidates.size() < 2 || !surroundings(r.candidates[size_t(r.mask_index)], min_surroundings_share))
     return r.mask_index;
+  auto in_frame = [&](size_t c) {
+    return int(c) != r.mask_index && borders_reached(r.candidates[c]) <= 1 && holds_positives(r.candidates[c], clicks);
+  };
   int best = r.mask_index;
   size_t best_area = 0;
   for (size_t c = 0; c < r.candidates.size(); ++c) {
-    const Mask& m = r.candidates[c];
-    if (int(c) == r.mask_index || r.candidate_scores[c] < min_score || borders_reached(m) > 1) continue;
-    const size_t area = mask_area(m);
-    if (holds_positives(m, clicks) && area > best_area) {
+    if (r.candidate_scores[c] < min_score || !in_frame(c)) continue;
+    const size_t area = mask_area(r.candidates[c]);
+    if (area > best_area) {
       best = int(c);
       best_area = area;
     }
+  }
+  if (best != r.mask_index) return best;
+  double best_score = min_uncertain_score;
+  for (size_t c = 0; c < r.candidates.size(); ++c) {
+    if (r.candidate_scores[c] < best_score || !in_frame(c)) continue;
+    best = int(c);
+    best_score = r.candidate_scores[c];
   }
   return best;
 }
@@ -681,7 +693,8 @@ RoundReport Session::run_round(State& next, const State& prev) {
       const bool joint_surroundings = surroundings(together, o.min_surroundings_share);
       for (size_t c = 0; c < prompts[i].size(); ++c, ++j) {
         const models::SegmentResult& r = *single[j];
-        const int pick = o.object_prior ? object_candidate(r, {prompts[i][c]}, o.min_object_score, o.min_surroundings_share)
+        const int pick = o.object_prior ? object_candidate(r, {prompts[i][c]}, o.min_object_score,
+                                                           o.min_uncertain_object_score, o.min_surroundings_share)
                                         : r.mask_index;
         const Mask& m = r.candidates[size_t(pick)];
         // Where the joint answer is an object, a click whose own mask is the surroundings (a
@@ -823,7 +836,11 @@ RoundReport Session::run_round(State& next, const State& prev) {
   auto clicked_candidate = [&](const models::SegmentResult& r, const ViewState& vs, bool* conflict = nullptr,
                                bool* switched = nullptr) {
     return respect_negatives(
-        r, o.object_prior ? object_candidate(r, vs.clicks, o.min_object_score, o.min_surroundings_share) : r.mask_index, vs,
+        r,
+        o.object_prior ? object_candidate(r, vs.clicks, o.min_object_score, o.min_uncertain_object_score,
+                                          o.min_surroundings_share)
+                       : r.mask_index,
+        vs,
         conflict, switched);
   };
   // The candidate the user chose in a view (UserClick::candidate) while SAM's answer it

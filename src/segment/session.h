@@ -158,6 +158,9 @@ struct SessionOptions {
   // floor seen from above its far edge); granularity consensus does not grow into such a candidate.
   bool object_prior = true;
   double min_object_score = 0.75;  // SAM's predicted IoU the object candidate needs
+  // ... and where no candidate scores that, the best scored one from this score on (SAM unsure
+  // of a small or low-contrast object but not of the room around it; > 1: SAM's choice stays)
+  double min_uncertain_object_score = 0.3;
   double min_surroundings_share = 0.3;
   // Negative clicks cut what SAM segments at them from the mask, instead of being given
   // to SAM as negative points (which reshapes the whole mask unpredictably).
