@@ -142,6 +142,7 @@ int run_eval_ablation(const Args& args) {
       {"- negative clicks one by one", [](segment::SessionOptions& o) { o.negatives_one_by_one = false; }},
       {"- no cut through the scene", [](segment::SessionOptions& o) { o.see_through_options.max_peeled_view_share = 1; }},
       {"- uncertain object", [](segment::SessionOptions& o) { o.min_uncertain_object_score = 2; }},
+      {"- tiny part steps up", [](segment::SessionOptions& o) { o.tiny_step_up.enabled = false; }},
   };
   const std::string which = args.get("configs", "");
   if (!which.empty()) {  // a comma list of row numbers (0 = default)

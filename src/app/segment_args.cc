@@ -103,6 +103,9 @@ const char* const kSegmentOptionsHelp =
     "                                inside the frame holds the click\n"
     "  --no-uncertain-object         the object prior takes only a candidate SAM scores >= 0.75 (default:\n"
     "                                where none does, the best scored from 0.3 on)\n"
+    "  --no-tiny-step-up             keep a clicked view's candidate under 0.5 % of the image (default: the\n"
+    "                                next larger one holding the clicks, inside the frame, 1.5-4x its area\n"
+    "                                and scoring >= 0.85: a lamp's shade steps up to the lamp)\n"
     "  --no-whole-neutral            let a view whose mask is a part of a larger candidate vote against\n"
     "                                the rest of that candidate (the vote keeps the intersection)\n"
     "  --selection-prompts N         rounds prompting views no click reached (default 2, 0 = off)\n"
@@ -138,7 +141,7 @@ const std::set<std::string>& segment_value_flags() {
 const std::set<std::string>& segment_switch_flags() {
   static const std::set<std::string> f = {"no-inspection",       "photos",      "no-trained-background",      "paper",
                                           "no-depth-layers",     "overlap-inspection",  "global-depth-layers", "no-see-through", "no-see-through-enclosures", "no-coherence", "no-centre-rule", "no-depth-extents", "no-background-gate", "background-neutral", "no-background-plane", "rendered-surface", "no-far-behind-check", "keep-whole-islands", "keep-apart-islands", "keep-seen-behind", "keep-behind-click", "keep-behind-pieces", "part-votes-against", "no-attached-parts", "wide-views-vouch", "keep-beyond-part", "no-negative-islands",
-                                          "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-uncertain-object", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
+                                          "candidate-choice", "no-granularity-consensus", "no-whole-mask-retry", "no-empty-selection-retry", "no-grow-to-selection", "no-part-growth", "no-object-prior", "no-uncertain-object", "no-tiny-step-up", "no-whole-neutral", "hidden-fallback", "no-depth-agreement", "interior-anchor",
                                           "sam-negatives", "sam-all-clicks", "no-negative-granularity", "negatives-may-add",
                                           "negatives-together"};
   return f;
@@ -198,6 +201,7 @@ SegmentSetup parse_segment_setup(const Args& args) {
   s.session.whole_neutral = !args.has("no-whole-neutral");
   s.session.object_prior = !args.has("no-object-prior");
   if (args.has("no-uncertain-object")) s.session.min_uncertain_object_score = 2;
+  s.session.tiny_step_up.enabled = !args.has("no-tiny-step-up");
   s.session.propagation.hidden_fallback = args.has("hidden-fallback");
   if (args.has("no-depth-agreement")) s.session.propagation.depth_agreement = 0;
   s.session.interior_anchor.enabled = args.has("interior-anchor");

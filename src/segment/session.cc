@@ -63,6 +63,7 @@ SessionOptions paper_pipeline(SessionOptions o) {
   o.apart.enabled = o.part_leaves_selection_open = false;
   o.attached_parts.enabled = o.negative_only_removes = o.negatives_one_by_one = false;
   o.selection_prompt_rounds = 0;
+  o.tiny_step_up.enabled = false;
   o.see_through = o.coherence = o.centre_rule.enabled = o.background_gate = false;
   o.propagation.hidden_fallback = true;
   o.propagation.depth_agreement = 0;
@@ -159,6 +160,42 @@ int object_candidate(const models::SegmentResult& r, const std::vector<Click>& c
     best_score = r.candidate_scores[c];
   }
   return best;
+}
+
+// A candidate covering under max_share of the image (a desk lamp's shade, a vase's flowers
+// without the vase, a bottle's cap) is more often a part of what was clicked than all of it:
+// it steps up to the next larger candidate that holds every positive click, stays inside the
+// frame (one border at most), scores min_score and is another granularity (min_growth to
+// max_growth times its area). A tiny object whose next candidate takes in what it stands on
+// keeps its own mask: that one is 1.1x larger, nearly the same mask (a soap on its dish).
+int step_up_from_tiny(const models::SegmentResult& r, int chosen, const std::vector<Click>& clicks,
+                      const TinyStepUp& t, double min_growth) {
+  if (!t.enabled) return chosen;
+  const Mask& mask = r.candidates[size_t(chosen)];
+  const double area = double(mask_area(mask));
+  if (area > t.max_share * double(mask.data.size())) return chosen;
+  int up = chosen;
+  double up_area = 0;
+  for (size_t c = 0; c < r.candidates.size(); ++c) {
+    const double a = double(mask_area(r.candidates[c]));
+    if (a < min_growth * area || a > t.max_growth * area || r.candidate_scores[c] < t.min_score ||
+        borders_reached(r.candidates[c]) > 1 || !holds_positives(r.candidates[c], clicks))
+      continue;
+    if (up == chosen || a < up_area) {
+      up = int(c);
+      up_area = a;
+    }
+  }
+  return up;
+}
+
+// The candidate a view's clicks mean: SAM's choice under the object prior, stepped up from a
+// tiny part.
+int click_candidate(const models::SegmentResult& r, const std::vector<Click>& clicks, const SessionOptions& o) {
+  const int c = o.object_prior ? object_candidate(r, clicks, o.min_object_score, o.min_uncertain_object_score,
+                                                  o.min_surroundings_share)
+                               : r.mask_index;
+  return step_up_from_tiny(r, c, clicks, o.tiny_step_up, o.granularity_growth);
 }
 
 // A pixel of a mask: a SAM candidate (bytes) or a rendered or voting mask (floats > 0.5).
@@ -693,6 +730,9 @@ RoundReport Session::run_round(State& next, const State& prev) {
       const bool joint_surroundings = surroundings(together, o.min_surroundings_share);
       for (size_t c = 0; c < prompts[i].size(); ++c, ++j) {
         const models::SegmentResult& r = *single[j];
+        // What the click segments alone under the object prior, not stepped up from a tiny
+        // part: the joint answer is judged against the clicks' own masks, and a stepped-up
+        // one would hide a joint answer far larger than them (a vase behind a trellis).
         const int pick = o.object_prior ? object_candidate(r, {prompts[i][c]}, o.min_object_score,
                                                            o.min_uncertain_object_score, o.min_surroundings_share)
                                         : r.mask_index;
@@ -832,16 +872,10 @@ RoundReport Session::run_round(State& next, const State& prev) {
     const Mask all = negative_union(vs.sam_negatives);
     return negative_free_candidate(r, c, vs.clicks, &all, o.min_object_score, conflict, switched);
   };
-  // SAM's choice in a clicked view, or the object candidate the prior prefers to it.
+  // The candidate a clicked view takes (click_candidate), less what negative clicks point at.
   auto clicked_candidate = [&](const models::SegmentResult& r, const ViewState& vs, bool* conflict = nullptr,
                                bool* switched = nullptr) {
-    return respect_negatives(
-        r,
-        o.object_prior ? object_candidate(r, vs.clicks, o.min_object_score, o.min_uncertain_object_score,
-                                          o.min_surroundings_share)
-                       : r.mask_index,
-        vs,
-        conflict, switched);
+    return respect_negatives(r, click_candidate(r, vs.clicks, o), vs, conflict, switched);
   };
   // The candidate the user chose in a view (UserClick::candidate) while SAM's answer it
   // indexes holds: until a later positive click there (or any click, where negative clicks

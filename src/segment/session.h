@@ -25,6 +25,14 @@
 
 namespace isegman::segment {
 
+// A view's tiny candidate stepping up to the next larger one (SessionOptions::tiny_step_up).
+struct TinyStepUp {
+  bool enabled = true;
+  double max_share = 0.005;  // of the image: what counts as tiny (0.5 %, 864 px at 480x360)
+  double min_score = 0.85;   // SAM's predicted IoU the larger candidate needs
+  double max_growth = 4;     // times the tiny candidate's area, at most (at least granularity_growth)
+};
+
 struct SessionOptions {
   PropagationOptions propagation;
   // A positive click reaches other views from the interior of the surface it hit in its own
@@ -162,6 +170,11 @@ struct SessionOptions {
   // of a small or low-contrast object but not of the room around it; > 1: SAM's choice stays)
   double min_uncertain_object_score = 0.3;
   double min_surroundings_share = 0.3;
+  // In a view with clicks, a candidate under tiny_step_up.max_share of the image steps up to
+  // the next larger candidate that holds the clicks and stays inside the frame (session.cc
+  // step_up_from_tiny): SAM's choice at a desk lamp's shade, a vase's flowers or a bottle's
+  // cap is the part more often than the object (docs/evaluation.md, stop 77).
+  TinyStepUp tiny_step_up;
   // Negative clicks cut what SAM segments at them from the mask, instead of being given
   // to SAM as negative points (which reshapes the whole mask unpredictably).
   bool negative_regions = true;
