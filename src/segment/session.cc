@@ -170,7 +170,8 @@ int object_candidate(const models::SegmentResult& r, const std::vector<Click>& c
 // keeps its own mask: that one is 1.1x larger, nearly the same mask (a soap on its dish).
 int step_up_from_tiny(const models::SegmentResult& r, int chosen, const std::vector<Click>& clicks,
                       const TinyStepUp& t, double min_growth) {
-  if (!t.enabled) return chosen;
+  const bool positive = std::any_of(clicks.begin(), clicks.end(), [](const Click& k) { return k.label == 1; });
+  if (!t.enabled || !positive) return chosen;  // no positive click: no object to step up to
   const Mask& mask = r.candidates[size_t(chosen)];
   const double area = double(mask_area(mask));
   if (area > t.max_share * double(mask.data.size())) return chosen;
