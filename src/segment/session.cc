@@ -120,6 +120,11 @@ bool holds(const Mask& mask, const Click& k) {
   return mask.at(x, y);
 }
 
+// Whether any click is positive.
+bool any_positive(const std::vector<Click>& clicks) {
+  return std::any_of(clicks.begin(), clicks.end(), [](const Click& k) { return k.label == 1; });
+}
+
 // Whether mask holds every positive click's pixel.
 bool holds_positives(const Mask& mask, const std::vector<Click>& clicks) {
   return std::all_of(clicks.begin(), clicks.end(), [&](const Click& k) { return k.label != 1 || holds(mask, k); });
@@ -136,8 +141,7 @@ bool holds_positives(const Mask& mask, const std::vector<Click>& clicks) {
 // that means the object gets it at once.
 int object_candidate(const models::SegmentResult& r, const std::vector<Click>& clicks, double min_score,
                      double min_uncertain_score, double min_surroundings_share) {
-  const bool positive = std::any_of(clicks.begin(), clicks.end(), [](const Click& k) { return k.label == 1; });
-  if (!positive || r.candidates.size() < 2 || !surroundings(r.candidates[size_t(r.mask_index)], min_surroundings_share))
+  if (!any_positive(clicks) || r.candidates.size() < 2 || !surroundings(r.candidates[size_t(r.mask_index)], min_surroundings_share))
     return r.mask_index;
   auto in_frame = [&](size_t c) {
     return int(c) != r.mask_index && borders_reached(r.candidates[c]) <= 1 && holds_positives(r.candidates[c], clicks);
@@ -170,8 +174,7 @@ int object_candidate(const models::SegmentResult& r, const std::vector<Click>& c
 // keeps its own mask: that one is 1.1x larger, nearly the same mask (a soap on its dish).
 int step_up_from_tiny(const models::SegmentResult& r, int chosen, const std::vector<Click>& clicks,
                       const TinyStepUp& t, double min_growth) {
-  const bool positive = std::any_of(clicks.begin(), clicks.end(), [](const Click& k) { return k.label == 1; });
-  if (!t.enabled || !positive) return chosen;  // no positive click: no object to step up to
+  if (!t.enabled || !any_positive(clicks)) return chosen;  // no positive click: no object to step up to
   const Mask& mask = r.candidates[size_t(chosen)];
   const double area = double(mask_area(mask));
   if (area > t.max_share * double(mask.data.size())) return chosen;
@@ -190,13 +193,16 @@ int step_up_from_tiny(const models::SegmentResult& r, int chosen, const std::vec
   return up;
 }
 
-// The candidate a view's clicks mean: SAM's choice under the object prior, stepped up from a
-// tiny part.
+// SAM's choice for the clicks under the object prior (when it is on).
+int prior_candidate(const models::SegmentResult& r, const std::vector<Click>& clicks, const SessionOptions& o) {
+  return o.object_prior ? object_candidate(r, clicks, o.min_object_score, o.min_uncertain_object_score,
+                                           o.min_surroundings_share)
+                        : r.mask_index;
+}
+
+// The candidate a view's clicks mean: the prior's, stepped up from a tiny part.
 int click_candidate(const models::SegmentResult& r, const std::vector<Click>& clicks, const SessionOptions& o) {
-  const int c = o.object_prior ? object_candidate(r, clicks, o.min_object_score, o.min_uncertain_object_score,
-                                                  o.min_surroundings_share)
-                               : r.mask_index;
-  return step_up_from_tiny(r, c, clicks, o.tiny_step_up, o.granularity_growth);
+  return step_up_from_tiny(r, prior_candidate(r, clicks, o), clicks, o.tiny_step_up, o.granularity_growth);
 }
 
 // A pixel of a mask: a SAM candidate (bytes) or a rendered or voting mask (floats > 0.5).
@@ -734,9 +740,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
         // What the click segments alone under the object prior, not stepped up from a tiny
         // part: the joint answer is judged against the clicks' own masks, and a stepped-up
         // one would hide a joint answer far larger than them (a vase behind a trellis).
-        const int pick = o.object_prior ? object_candidate(r, {prompts[i][c]}, o.min_object_score,
-                                                           o.min_uncertain_object_score, o.min_surroundings_share)
-                                        : r.mask_index;
+        const int pick = prior_candidate(r, {prompts[i][c]}, o);
         const Mask& m = r.candidates[size_t(pick)];
         // Where the joint answer is an object, a click whose own mask is the surroundings (a
         // later click on a rug's fringe, alone the floor) says nothing about it: it neither
@@ -784,7 +788,7 @@ RoundReport Session::run_round(State& next, const State& prev) {
     std::vector<const std::vector<float>*> previous;
     for (size_t k : subset) {
       ViewState& vs = fresh[k];
-      const bool positive = std::any_of(vs.clicks.begin(), vs.clicks.end(), [](const Click& c) { return c.label == 1; });
+      const bool positive = any_positive(vs.clicks);
       if (!positive) {
         vs.status = ViewStatus::NoClicks;
         continue;
