@@ -1483,6 +1483,24 @@ struct FloorBoards {
   double variation, size, shine;
 };
 
+// A back wall facing the cameras (-y) at wall_y: n Gaussians spread over x in [-half_width,
+// half_width] and z in [0, height], none inside its openings (a window, a mirror), coloured by
+// colour(x, z).
+struct Opening {
+  double x0, x1, z0, z1;
+};
+template <class Colour>
+void back_wall(SceneBuilder& b, double half_width, double wall_y, double height, int n, double size, double shine,
+               const std::vector<Opening>& openings, Colour colour) {
+  for (int i = 0; i < n; ++i) {
+    const Vec3 p{b.rng.range(-half_width, half_width), wall_y, b.rng.range(0, height)};
+    if (std::any_of(openings.begin(), openings.end(),
+                    [&](const Opening& o) { return p.x > o.x0 && p.x < o.x1 && p.z > o.z0 && p.z < o.z1; }))
+      continue;
+    b.splat(p, {0, -1, 0}, size, colour(p.x, p.z), -1, shine);
+  }
+}
+
 void floor_boards(SceneBuilder& b, const FloorBoards& f, int n) {
   for (int i = 0; i < n; ++i) {
     const Vec3 p{b.rng.range(f.x0, f.x1), b.rng.range(f.y0, f.y1), 0};
@@ -2143,10 +2161,7 @@ EvalScene garage(const EvalSetOptions& opt) {
     if (std::abs(z - 1.1) < 0.012) c = {0.30, 0.32, 0.34};  // the dado's edge
     return (joint ? c * 0.86 : c) + noise(0.02);
   };
-  for (int i = 0, n = int(15000 * d); i < n; ++i) {  // the back wall, up past every view
-    const Vec3 p{rng.range(-side_x, side_x), wall_y, rng.range(0, room_h)};
-    b.splat(p, {0, -1, 0}, 0.045 * sz, blocks(p.x, p.z), -1, 0.02);
-  }
+  back_wall(b, side_x, wall_y, room_h, int(15000 * d), 0.045 * sz, 0.02, {}, blocks);  // up past every view
   b.size_scale = 1.5;  // the side walls and the floor only as far forward as any camera sees
   for (int i = 0, n = int(4000 * d); i < n; ++i) {  // the left wall, a window in it
     const Vec3 p{-side_x, rng.range(front_y, wall_y), rng.range(0, room_h)};
@@ -2517,11 +2532,8 @@ EvalScene bedroom(const EvalSetOptions& opt) {
     return paint * (0.94 + 0.025 * z) + Vec3{1, 1, 1} * blotch + noise(0.02);
   };
   const double win_x0 = -2.6, win_x1 = -1.4, win_z0 = 0.95, win_z1 = 2.05;
-  for (int i = 0, n = int(14000 * d); i < n; ++i) {  // the back wall, up past every view
-    const Vec3 p{rng.range(-side_x, side_x), wall_y, rng.range(0, room_h)};
-    if (p.x > win_x0 && p.x < win_x1 && p.z > win_z0 && p.z < win_z1) continue;  // the window
-    b.splat(p, {0, -1, 0}, 0.05 * sz, wall_rgb(p.x, p.z), -1, 0.02);
-  }
+  back_wall(b, side_x, wall_y, room_h, int(14000 * d), 0.05 * sz, 0.02, {{win_x0, win_x1, win_z0, win_z1}},
+            wall_rgb);  // up past every view
   b.size_scale = 1.5;  // the side walls only as far forward as any camera sees
   for (double x : {-side_x, side_x})
     for (int i = 0, n = int(4000 * d); i < n; ++i) {
@@ -2992,12 +3004,9 @@ EvalScene bathroom(const EvalSetOptions& opt) {
   };
   const double win_x0 = -1.45, win_x1 = -0.85, win_z0 = 1.5, win_z1 = 2.05;
   const double mir_x0 = 1.58, mir_x1 = 1.98, mir_z0 = 1.15, mir_z1 = 1.8;
-  for (int i = 0, n = int(16000 * d); i < n; ++i) {  // the back wall, up past every view
-    const Vec3 p{rng.range(-side_x, side_x), wall_y, rng.range(0, room_h)};
-    if (p.x > win_x0 && p.x < win_x1 && p.z > win_z0 && p.z < win_z1) continue;  // the window
-    if (p.x > mir_x0 && p.x < mir_x1 && p.z > mir_z0 && p.z < mir_z1) continue;  // the mirror
-    b.splat(p, {0, -1, 0}, 0.04 * sz, wall_rgb(p.x, p.z, p.x < bath_x1), -1, 0.03);
-  }
+  back_wall(b, side_x, wall_y, room_h, int(16000 * d), 0.04 * sz, 0.03,
+            {{win_x0, win_x1, win_z0, win_z1}, {mir_x0, mir_x1, mir_z0, mir_z1}},  // the window, the mirror
+            [&](double x, double z) { return wall_rgb(x, z, x < bath_x1); });  // up past every view
   b.depth_jitter = 0.001;
   b.shape_jitter = 0.2;
   // The grout on the back wall, lines every 15 cm across and up (where wall_rgb's tiles meet),
@@ -3429,11 +3438,8 @@ EvalScene laundry(const EvalSetOptions& opt) {
     return paint * (0.95 + 0.02 * z) + Vec3{1, 1, 1} * blotch + noise(0.02);
   };
   const double win_x0 = 1.0, win_x1 = 1.8, win_z0 = 1.05, win_z1 = 1.85;
-  for (int i = 0, n = int(14000 * d); i < n; ++i) {  // the back wall, up past every view
-    const Vec3 p{rng.range(-side_x, side_x), wall_y, rng.range(0, room_h)};
-    if (p.x > win_x0 && p.x < win_x1 && p.z > win_z0 && p.z < win_z1) continue;  // the window
-    b.splat(p, {0, -1, 0}, 0.045 * sz, wall_rgb(p.x, p.z), -1, 0.02);
-  }
+  back_wall(b, side_x, wall_y, room_h, int(14000 * d), 0.045 * sz, 0.02, {{win_x0, win_x1, win_z0, win_z1}},
+            wall_rgb);  // up past every view
   b.size_scale = 1.3;  // the side walls only as far forward as any camera sees
   for (double x : {-side_x, side_x})
     for (int i = 0, n = int(1500 * d); i < n; ++i) {
